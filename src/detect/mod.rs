@@ -1,0 +1,258 @@
+//! Detection: the earliest time a unit sphere moving along `vel` touches a
+//! triangle, where, and on which feature.
+//!
+//! Two variants sit side by side in [`sphere_triangle`]: Fauerby's test as
+//! he wrote it ([`Detection::Fauerby`], the baseline, defects included) and
+//! the robust one ([`Detection::Robust`]). [`Neighbourhood`] maps a frame's
+//! candidate triangles into eSpace once; [`earliest_hit`] runs a variant
+//! over them and [`sweep_world`] does the whole query against a world.
+
+pub mod roots;
+pub mod sphere_triangle;
+
+pub use sphere_triangle::{fauerby_point_in_triangle, sweep_fauerby, sweep_robust};
+
+use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, is_finite, norm, normalize};
+use crate::world::World;
+use crate::{Error, Real};
+
+/// Which sphere-vs-triangle test to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "cli", serde(rename_all = "lowercase"))]
+pub enum Detection {
+    /// Fauerby's test, faithful to his code (one-sided, textbook roots).
+    Fauerby,
+    /// The robust test ([`sweep_robust`]).
+    Robust,
+}
+
+impl Detection {
+    /// Runs this variant on one triangle.
+    #[must_use]
+    pub fn sweep<T: Real>(
+        self,
+        tri: &Triangle<T>,
+        base: &Vec3<T>,
+        vel: &Vec3<T>,
+        opts: &DetectOptions,
+        index: u32,
+    ) -> Option<Hit<T>> {
+        match self {
+            Detection::Fauerby => sweep_fauerby(tri, base, vel, index),
+            Detection::Robust => sweep_robust(tri, base, vel, opts, index),
+        }
+    }
+
+    /// The lowercase name used on the command line and in reports.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Detection::Fauerby => "fauerby",
+            Detection::Robust => "robust",
+        }
+    }
+}
+
+/// Options of the robust detection (Fauerby's has none).
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+pub struct DetectOptions {
+    /// Treat both sides of every triangle as solid (default `true`). When
+    /// `false`, a triangle whose plane has the sphere centre behind it is
+    /// ignored, as with back-face culling.
+    pub two_sided: bool,
+    /// The touching tolerance in units of `u * s` (unit roundoff times the
+    /// input magnitude, see [`sweep_robust`]); default 16. A sphere whose
+    /// closest distance is within `1 +- tol` counts as touching at `t = 0`.
+    pub touch_ulps: f64,
+}
+
+impl Default for DetectOptions {
+    fn default() -> Self {
+        DetectOptions {
+            two_sided: true,
+            touch_ulps: 16.0,
+        }
+    }
+}
+
+/// A contact found by a sweep, in the coordinates of the query.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hit<T: Real> {
+    /// Time of first touch, in `[0, 1]` (fraction of the velocity).
+    pub t: T,
+    /// The touched point on the triangle.
+    pub point: Vec3<T>,
+    /// Unit contact normal, from the contact point towards the sphere centre
+    /// at the time of touch.
+    pub normal: Vec3<T>,
+    /// The feature touched.
+    pub feature: Feature,
+    /// Index of the triangle in its mesh.
+    pub triangle: u32,
+    /// `true` when the sphere already overlapped the triangle at `t = 0`.
+    pub started_overlapping: bool,
+}
+
+/// One frame's candidate triangles in eSpace, relative to an origin.
+///
+/// Robust code uses the frame's start as origin (coordinates stay small far
+/// from the world origin); Fauerby's and Linahan's use the world origin, as
+/// they did.
+#[derive(Clone, Debug)]
+pub struct Neighbourhood<T: Real> {
+    /// World-space origin of the eSpace coordinates.
+    pub origin: Vec3<T>,
+    /// `(index, triangle)` pairs, increasing index, in eSpace relative to
+    /// `origin`.
+    pub triangles: Vec<(u32, Triangle<T>)>,
+}
+
+impl<T: Real> Neighbourhood<T> {
+    /// Every triangle of `world` whose bounds meet the world-space box
+    /// `[min, max]`, mapped to eSpace relative to `origin`.
+    #[must_use]
+    pub fn gather(
+        world: &World<T>,
+        body: &Ellipsoid<T>,
+        origin: Vec3<T>,
+        min: &Vec3<T>,
+        max: &Vec3<T>,
+        scratch: &mut Vec<u32>,
+    ) -> Self {
+        world.candidates(min, max, scratch);
+        scratch.sort_unstable();
+        let to_e = |v: &Vec3<T>| body.to_espace(&(v - &origin));
+        let triangles = scratch
+            .iter()
+            .map(|&t| {
+                let w = world.triangle(t);
+                (t, Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c)))
+            })
+            .collect();
+        Neighbourhood { origin, triangles }
+    }
+
+    /// The earliest hit of the unit sphere at `base` moving by `vel` (both in
+    /// this neighbourhood's eSpace coordinates) over all its triangles.
+    #[must_use]
+    pub fn earliest_hit(
+        &self,
+        detection: Detection,
+        base: &Vec3<T>,
+        vel: &Vec3<T>,
+        opts: &DetectOptions,
+    ) -> Option<Hit<T>> {
+        earliest_hit(
+            detection,
+            self.triangles.iter().map(|(i, t)| (*i, t)),
+            base,
+            vel,
+            opts,
+        )
+    }
+}
+
+/// The earliest hit over `triangles`: smallest `t`, ties to the lowest
+/// triangle index (so the answer does not depend on the order given).
+#[must_use]
+pub fn earliest_hit<'a, T: Real + 'a>(
+    detection: Detection,
+    triangles: impl IntoIterator<Item = (u32, &'a Triangle<T>)>,
+    base: &Vec3<T>,
+    vel: &Vec3<T>,
+    opts: &DetectOptions,
+) -> Option<Hit<T>> {
+    let mut best: Option<Hit<T>> = None;
+    for (index, tri) in triangles {
+        if let Some(h) = detection.sweep(tri, base, vel, opts, index) {
+            let better = match &best {
+                None => true,
+                Some(b) => h.t < b.t || (h.t == b.t && h.triangle < b.triangle),
+            };
+            if better {
+                best = Some(h);
+            }
+        }
+    }
+    best
+}
+
+/// Sweeps `body` from `position` by `velocity` (world space) through the
+/// whole `world` and returns the earliest hit, in world space: `point` on
+/// the triangle, `normal` the unit surface normal there (the eSpace normal
+/// mapped back), `t` the fraction of `velocity`.
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite position or velocity.
+pub fn sweep_world<T: Real>(
+    world: &World<T>,
+    body: &Ellipsoid<T>,
+    position: &Vec3<T>,
+    velocity: &Vec3<T>,
+    detection: Detection,
+    opts: &DetectOptions,
+) -> Result<Option<Hit<T>>, Error> {
+    check_finite("position", position)?;
+    check_finite("velocity", velocity)?;
+    let origin = match detection {
+        Detection::Robust => position.clone(),
+        Detection::Fauerby => Vec3::zeros(),
+    };
+    let (min, max) = swept_box(body, position, velocity, &T::zero());
+    let hood = Neighbourhood::gather(world, body, origin.clone(), &min, &max, &mut Vec::new());
+    let base = body.to_espace(&(position - &origin));
+    let vel = body.to_espace(velocity);
+    Ok(hood
+        .earliest_hit(detection, &base, &vel, opts)
+        .map(|h| Hit {
+            point: body.from_espace(&h.point) + &origin,
+            normal: normalize(&Vec3::from_fn(|i, _| {
+                h.normal[i].clone() / &body.radii()[i]
+            }))
+            .unwrap_or(h.normal),
+            ..h
+        }))
+}
+
+/// The world-space box that holds `body` everywhere on the segment from
+/// `position` to `position + velocity`, grown by `margin` times the radii.
+#[must_use]
+pub fn swept_box<T: Real>(
+    body: &Ellipsoid<T>,
+    position: &Vec3<T>,
+    velocity: &Vec3<T>,
+    margin: &T,
+) -> (Vec3<T>, Vec3<T>) {
+    let end = position + velocity;
+    let grow = body.radii() * (T::one() + margin);
+    let min = Vec3::from_fn(|i, _| position[i].clone().min(end[i].clone()) - &grow[i]);
+    let max = Vec3::from_fn(|i, _| position[i].clone().max(end[i].clone()) + &grow[i]);
+    (min, max)
+}
+
+/// [`Error::NonFinite`] if a coordinate of `v` is NaN or infinite.
+///
+/// # Errors
+/// As described.
+pub fn check_finite<T: Real>(what: &str, v: &Vec3<T>) -> Result<(), Error> {
+    if is_finite(v) {
+        return Ok(());
+    }
+    let value = v
+        .iter()
+        .map(Real::to_f64)
+        .find(|x| !x.is_finite())
+        .unwrap_or(f64::NAN);
+    Err(Error::NonFinite {
+        what: what.to_string(),
+        value,
+    })
+}
+
+/// Fauerby's `nearestDistance`: how far along `vel` the hit lies.
+#[must_use]
+pub fn hit_distance<T: Real>(hit: &Hit<T>, vel: &Vec3<T>) -> T {
+    hit.t.clone() * norm(vel)
+}

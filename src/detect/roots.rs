@@ -1,0 +1,71 @@
+//! Quadratic root finders: Fauerby's textbook one and a stable one.
+//!
+//! Both solve for the time `t` at which a moving point reaches distance 1
+//! from a fixed point or line, `a t^2 + b t + c = 0` with `a >= 0`.
+
+use crate::Real;
+
+/// Fauerby's `getLowestRoot`, as he wrote it: the textbook formula
+/// `(-b -+ sqrt(b^2 - 4ac)) / 2a`, roots sorted, the lower one returned if it
+/// lies in `(0, max_r)`, *else the upper one* if it does.
+///
+/// Its defects are kept on purpose (this is the baseline the lab measures):
+/// cancellation in `-b + sqrt(...)`, no guard for `a == 0` (division by
+/// zero gives infinities or NaN, which then fail the comparisons), a root at
+/// exactly `t = 0` is rejected, and when the body already overlaps the
+/// feature (`c < 0`) the *exit* time is returned.
+#[must_use]
+pub fn textbook_lowest_root<T: Real>(a: &T, b: &T, c: &T, max_r: &T) -> Option<T> {
+    let det = b.clone() * b - T::c(4.0) * a * c;
+    if det < T::zero() {
+        return None;
+    }
+    let sqrt_d = det.sqrt();
+    let two_a = T::c(2.0) * a;
+    let mut r1 = (-b.clone() - &sqrt_d) / &two_a;
+    let mut r2 = (-b.clone() + &sqrt_d) / &two_a;
+    if r1 > r2 {
+        std::mem::swap(&mut r1, &mut r2);
+    }
+    if r1 > T::zero() && r1 < *max_r {
+        return Some(r1);
+    }
+    if r2 > T::zero() && r2 < *max_r {
+        return Some(r2);
+    }
+    None
+}
+
+/// `b^2 - a c`, accurate to a few units in the last place even when the two
+/// products nearly cancel (Kahan's discriminant with fused multiply-adds;
+/// Jeannerod, Louvet and Muller 2013 bound its error by `2u |b^2 - ac|`).
+#[must_use]
+pub fn discriminant<T: Real>(a: &T, half_b: &T, c: &T) -> T {
+    let w = a.clone() * c;
+    let e = (-a.clone()).mul_add(c, &w); // w - a*c, exactly
+    let f = half_b.mul_add(half_b, &-w);
+    f + &e
+}
+
+/// The entry time of `a t^2 + 2 half_b t + c = 0` for a body that starts
+/// outside (`c > 0`) and whose squared distance grows like `a >= 0`: the
+/// smaller root `c / q` with `q = -half_b + sqrt(half_b^2 - a c)`, computed
+/// without cancellation. `None` when the body does not approach
+/// (`half_b >= 0`) or never reaches the feature (negative discriminant).
+///
+/// There is no division by `a`, so a vanishing `a` (zero velocity, motion
+/// parallel to an edge) needs no special case: the root tends to the linear
+/// solution `c / (2 |half_b|)` and to `None` as `half_b` vanishes too.
+/// Rounding: relative error of a few `u` in the returned time.
+#[must_use]
+pub fn stable_entry_root<T: Real>(a: &T, half_b: &T, c: &T) -> Option<T> {
+    if !(*half_b < T::zero()) {
+        return None;
+    }
+    let disc = discriminant(a, half_b, c);
+    if disc < T::zero() {
+        return None;
+    }
+    let q = disc.sqrt() - half_b;
+    Some(c.clone() / q)
+}

@@ -1,0 +1,344 @@
+//! The unit sphere swept against one triangle: Fauerby's test as he wrote
+//! it, and the robust one. Coordinates are eSpace (the body is the unit
+//! sphere centred at `base`, moving by `vel` over `t` in `[0, 1]`).
+
+use super::roots::{stable_entry_root, textbook_lowest_root};
+use super::{DetectOptions, Hit};
+use crate::Real;
+use crate::geom::{
+    Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared,
+    normalize,
+};
+
+/// Where and how a contact was found: the sphere centre and the contact
+/// point at the time of touch (in the coordinates the test worked in) and
+/// the normal to fall back on if they coincide.
+struct Touch<T: Real> {
+    t: T,
+    point: Vec3<T>,
+    centre: Vec3<T>,
+    feature: Feature,
+}
+
+impl<T: Real> Touch<T> {
+    /// The hit record; `origin` is added to the point to return it in the
+    /// caller's coordinates (the normal is computed before, where the
+    /// coordinates are small).
+    fn into_hit(
+        self,
+        origin: Option<&Vec3<T>>,
+        fallback: &Vec3<T>,
+        index: u32,
+        overlapping: bool,
+    ) -> Hit<T> {
+        let normal = normalize(&(&self.centre - &self.point)).unwrap_or_else(|| fallback.clone());
+        let point = match origin {
+            Some(o) => self.point + o,
+            None => self.point,
+        };
+        Hit {
+            t: self.t,
+            point,
+            normal,
+            feature: self.feature,
+            triangle: index,
+            started_overlapping: overlapping,
+        }
+    }
+}
+
+/// Fauerby's `checkTriangle`, faithfully: back-face culling against the
+/// normalised velocity, the plane interval `[t0, t1]` with his exact
+/// `nv == 0` test, the face test with his sign-bit inside test, then the
+/// three vertices and three edges with the textbook root finder. Defects are
+/// kept: see [`textbook_lowest_root`] and [`fauerby_point_in_triangle`].
+#[must_use]
+pub fn sweep_fauerby<T: Real>(
+    tri: &Triangle<T>,
+    base: &Vec3<T>,
+    vel: &Vec3<T>,
+    index: u32,
+) -> Option<Hit<T>> {
+    let zero = T::zero();
+    let one = T::one();
+    // His PLANE(p1, p2, p3) normalises without a guard; his normalize()
+    // divides by the length even when it is zero (NaN then fails the test
+    // below, so a degenerate triangle or a zero velocity finds nothing).
+    let raw = tri.unnormalized_normal();
+    let plane = Plane::from_point_normal(&tri.a, raw.clone() / norm(&raw));
+    let normalized_velocity = vel.clone() / norm(vel);
+    if !(dot(&plane.normal, &normalized_velocity) <= zero) {
+        return None; // isFrontFacingTo: only triangles facing the motion
+    }
+    let signed_dist = plane.signed_distance(base);
+    let normal_dot_velocity = dot(&plane.normal, vel);
+    let mut embedded = false;
+    let (t0, t1);
+    if normal_dot_velocity == zero {
+        if signed_dist.abs() >= one {
+            return None;
+        }
+        embedded = true;
+        (t0, t1) = (zero.clone(), one.clone());
+    } else {
+        let mut a = (-one.clone() - &signed_dist) / &normal_dot_velocity;
+        let mut b = (one.clone() - &signed_dist) / &normal_dot_velocity;
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        if a > one || b < zero {
+            return None;
+        }
+        t0 = a.max(zero.clone()).min(one.clone());
+        t1 = b.max(zero.clone()).min(one.clone());
+    }
+    let _ = t1; // Fauerby computes it but only the entry time is used.
+    if !embedded {
+        let plane_point = base - &plane.normal + vel * t0.clone();
+        if fauerby_point_in_triangle(&plane_point, tri) {
+            let overlapping = t0 == zero;
+            let centre = base + vel * t0.clone();
+            let touch = Touch {
+                t: t0,
+                point: plane_point,
+                centre,
+                feature: Feature::Face,
+            };
+            return Some(touch.into_hit(None, &plane.normal, index, overlapping));
+        }
+    }
+    let velocity_sq = norm_squared(vel);
+    let mut t = one.clone();
+    let mut found: Option<(Vec3<T>, Feature)> = None;
+    for i in 0..3 {
+        let p = tri.vertex(i);
+        let b = T::c(2.0) * dot(vel, &(base - p));
+        let c = norm_squared(&(p - base)) - &one;
+        if let Some(root) = textbook_lowest_root(&velocity_sq, &b, &c, &t) {
+            t = root;
+            found = Some((p.clone(), Feature::Vertex(i as u8)));
+        }
+    }
+    for i in 0..3 {
+        let (p, q) = (tri.vertex(i), tri.vertex(i + 1));
+        let edge = q - p;
+        let base_to_vertex = p - base;
+        let edge_sq = norm_squared(&edge);
+        let edge_dot_velocity = dot(&edge, vel);
+        let edge_dot_btv = dot(&edge, &base_to_vertex);
+        let a =
+            edge_sq.clone() * -velocity_sq.clone() + edge_dot_velocity.clone() * &edge_dot_velocity;
+        let b = edge_sq.clone() * (T::c(2.0) * dot(vel, &base_to_vertex))
+            - T::c(2.0) * &edge_dot_velocity * &edge_dot_btv;
+        let c = edge_sq.clone() * (one.clone() - norm_squared(&base_to_vertex))
+            + edge_dot_btv.clone() * &edge_dot_btv;
+        if let Some(root) = textbook_lowest_root(&a, &b, &c, &t) {
+            let f = (edge_dot_velocity * &root - &edge_dot_btv) / &edge_sq;
+            if f >= zero && f <= one {
+                t = root;
+                found = Some((p + edge * f, Feature::Edge(i as u8)));
+            }
+        }
+    }
+    let (point, feature) = found?;
+    let centre = base + vel * t.clone();
+    let overlapping = t == zero;
+    Some(
+        Touch {
+            t,
+            point,
+            centre,
+            feature,
+        }
+        .into_hit(None, &plane.normal, index, overlapping),
+    )
+}
+
+/// Fauerby's `checkPointInTriangle`: barycentric-like quantities
+/// `x = d c - e b`, `y = e a - d b`, `z = x + y - (a c - b b)`, and "inside"
+/// read off the IEEE sign bits: `z` negative while neither `x` nor `y` is.
+/// No tolerance; `-0.0` counts as negative, `+0.0` as not, and a NaN with
+/// its sign bit set as negative, exactly as the bit trick behaves.
+#[must_use]
+pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) -> bool {
+    let e10 = &tri.b - &tri.a;
+    let e20 = &tri.c - &tri.a;
+    let a = dot(&e10, &e10);
+    let b = dot(&e10, &e20);
+    let c = dot(&e20, &e20);
+    let ac_bb = a.clone() * &c - b.clone() * &b;
+    let vp = point - &tri.a;
+    let d = dot(&vp, &e10);
+    let e = dot(&vp, &e20);
+    let x = d.clone() * &c - e.clone() * &b;
+    let y = e * &a - d * &b;
+    let z = x.clone() + &y - &ac_bb;
+    z.is_sign_negative() && !(x.is_sign_negative() || y.is_sign_negative())
+}
+
+/// The robust sweep: the earliest `t` in `[0, 1]` at which the unit sphere
+/// centred at `base + t vel` touches `tri`.
+///
+/// * All arithmetic is done on `tri - base` (relative coordinates), so the
+///   error depends on the distances involved, not on how far from the
+///   origin the scene lies.
+/// * A sphere that already touches or overlaps the triangle at `t = 0`
+///   (closest distance `<= 1 + tol`) is reported at `t = 0` with the
+///   separating normal (closest point to centre) if and only if the motion
+///   approaches that point; otherwise the distance to the (convex) triangle
+///   cannot decrease along the motion and there is no hit. The exit time is
+///   never reported.
+/// * Face: plane distance taken from the vertex nearest the centre; the
+///   contact point is inside when all three edge orientations are
+///   non-negative (boundary cases fall to the edge tests, which agree to
+///   second order).
+/// * Edges and vertices: squared-distance quadratics from cross products
+///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
+///   `(e.v)^2`), solved by [`stable_entry_root`] and only when the body
+///   starts outside the feature.
+/// * No exact float equality decides anything; `tol =
+///   opts.touch_ulps * u * s` with `u` the unit roundoff and
+///   `s = max(1, |tri - base|_inf, |vel|_inf)` the magnitude of the inputs.
+///
+/// Ties: face before edges before vertices, lower feature index first.
+#[must_use]
+pub fn sweep_robust<T: Real>(
+    tri: &Triangle<T>,
+    base: &Vec3<T>,
+    vel: &Vec3<T>,
+    opts: &DetectOptions,
+    index: u32,
+) -> Option<Hit<T>> {
+    let zero = T::zero();
+    let one = T::one();
+    let rel = tri.relative_to(base);
+    let p = [&rel.a, &rel.b, &rel.c];
+    let scale = p
+        .iter()
+        .copied()
+        .chain([vel])
+        .flat_map(|v| v.iter())
+        .fold(one.clone(), |m, x| m.max(x.abs()));
+    let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * &scale;
+    let mut normal = normalize(&rel.unnormalized_normal());
+
+    // Which side the centre (the origin, now) is on, from the nearest vertex.
+    let mut plane_dist = zero.clone();
+    if let Some(n) = &normal {
+        let nearest = p.iter().min_by(|u, v| {
+            norm_squared(*u)
+                .partial_cmp(&norm_squared(*v))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })?;
+        plane_dist = -dot(n, nearest);
+        if plane_dist < zero {
+            if !opts.two_sided {
+                return None;
+            }
+            normal = Some(-n.clone());
+            plane_dist = -plane_dist;
+        }
+    }
+    let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
+
+    // Touching or overlapping at the start.
+    let origin = Vec3::zeros();
+    let (closest, feature) = closest_point_on_triangle(&origin, &rel);
+    let dist = norm(&closest);
+    if dist <= one.clone() + &tol {
+        let sep = if dist > tol {
+            -closest.clone() / dist.clone()
+        } else {
+            face_normal.clone()
+        };
+        if dot(&sep, vel) < zero {
+            let overlapping = dist < one - &tol;
+            return Some(Hit {
+                t: zero,
+                point: closest + base,
+                normal: sep,
+                feature,
+                triangle: index,
+                started_overlapping: overlapping,
+            });
+        }
+        return None;
+    }
+
+    // Face interior.
+    if let Some(n) = &normal {
+        let nv = dot(n, vel);
+        if nv < zero && plane_dist > one {
+            let t = (plane_dist - &one) / -nv;
+            if t <= one {
+                let contact = vel * t.clone() - n;
+                let inside = (0..3).all(|i| {
+                    let (a, b) = (p[i], p[(i + 1) % 3]);
+                    dot(&cross(&(b - a), &(&contact - a)), n) >= zero
+                });
+                if inside {
+                    return Some(Hit {
+                        t,
+                        point: contact + base,
+                        normal: n.clone(),
+                        feature: Feature::Face,
+                        triangle: index,
+                        started_overlapping: false,
+                    });
+                }
+            }
+        }
+    }
+
+    // Edges, then vertices: the earliest entry time within [0, 1]; on a tie
+    // the feature found first stays.
+    let mut best: Option<Touch<T>> = None;
+    let better = |t: &T, best: &Option<Touch<T>>| match best {
+        None => *t <= one,
+        Some(b) => *t < b.t,
+    };
+    for i in 0..3 {
+        let (a, b) = (p[i], p[(i + 1) % 3]);
+        let e = b - a;
+        let e2 = norm_squared(&e);
+        let m = cross(&e, vel);
+        let k = cross(&e, a);
+        let c = norm_squared(&k) - &e2;
+        if !(c > zero) {
+            continue;
+        }
+        let Some(t) = stable_entry_root(&norm_squared(&m), &-dot(&m, &k), &c) else {
+            continue;
+        };
+        if !better(&t, &best) {
+            continue;
+        }
+        let centre = vel * t.clone();
+        let f = dot(&(&centre - a), &e) / &e2;
+        if f >= zero && f <= one {
+            best = Some(Touch {
+                t,
+                point: a + e * f,
+                centre,
+                feature: Feature::Edge(i as u8),
+            });
+        }
+    }
+    let v2 = norm_squared(vel);
+    for (i, v) in p.iter().enumerate() {
+        let c = norm_squared(*v) - &one;
+        let Some(t) = stable_entry_root(&v2, &-dot(vel, *v), &c) else {
+            continue;
+        };
+        if better(&t, &best) {
+            let centre = vel * t.clone();
+            best = Some(Touch {
+                t,
+                point: (*v).clone(),
+                centre,
+                feature: Feature::Vertex(i as u8),
+            });
+        }
+    }
+    Some(best?.into_hit(Some(base), &face_normal, index, false))
+}

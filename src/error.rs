@@ -1,0 +1,94 @@
+//! The crate's one error type.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong with input given to this crate.
+///
+/// Bad input is always reported, never repaired silently: a triangle that
+/// cannot be used is an error naming its index, an OBJ problem names its
+/// line.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum Error {
+    /// A coordinate (of a vertex, position, velocity, gravity, ...) is NaN
+    /// or infinite.
+    #[error("{what} has a non-finite coordinate ({value})")]
+    NonFinite {
+        /// What the coordinate belongs to, for example `vertex 12` or `velocity`.
+        what: String,
+        /// The offending value as given.
+        value: f64,
+    },
+    /// A triangle whose three vertices are (nearly) collinear or coincide.
+    #[error("triangle {index} is degenerate (zero area): {reason}")]
+    DegenerateTriangle {
+        /// Index of the triangle in the input.
+        index: usize,
+        /// Why it was rejected.
+        reason: String,
+    },
+    /// A triangle refers to a vertex that does not exist.
+    #[error(
+        "triangle {triangle} refers to vertex {vertex}, but there are only {vertex_count} vertices"
+    )]
+    VertexIndexOutOfRange {
+        /// Index of the triangle.
+        triangle: usize,
+        /// The vertex index it names.
+        vertex: usize,
+        /// How many vertices there are.
+        vertex_count: usize,
+    },
+    /// A mesh without any triangle.
+    #[error("the mesh has no triangles")]
+    EmptyMesh,
+    /// A radius that is zero, negative, NaN or infinite.
+    #[error("radius along {axis} must be positive and finite, got {value}")]
+    InvalidRadius {
+        /// `x`, `y` or `z`.
+        axis: char,
+        /// The value given.
+        value: f64,
+    },
+    /// An MPFR precision outside what MPFR and this crate support.
+    #[error("precision of {bits} bits is out of range ({min}..={max})")]
+    PrecisionOutOfRange {
+        /// The precision asked for.
+        bits: u32,
+        /// The smallest accepted.
+        min: u32,
+        /// The largest accepted.
+        max: u32,
+    },
+    /// A motion with zero velocity and no gravity: nothing would move.
+    #[error("velocity and gravity are both zero: nothing to simulate")]
+    ZeroVelocity,
+    /// A malformed Wavefront OBJ file.
+    #[error("{path}:{line}: {message}")]
+    Obj {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line number of the offending statement.
+        line: usize,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// A file could not be read or written.
+    #[error("{path}: {message}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's message.
+        message: String,
+    },
+    /// A value that is out of its documented range (an option, a count, ...).
+    #[error("{what}: {message}")]
+    InvalidArgument {
+        /// The argument.
+        what: String,
+        /// What is wrong with it.
+        message: String,
+    },
+}
+
+/// Shorthand for `Result<T, sweepslide::Error>`.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,153 @@
+//! Triangles, their features, and the closest point on a triangle.
+
+use super::{Vec3, cross, dot, norm_squared};
+use crate::{Error, Real};
+
+/// A triangle given by its vertices `a`, `b`, `c`. Its front face is the
+/// side `(b - a) x (c - a)` points to (counter-clockwise winding). Edge `i`
+/// runs from vertex `i` to vertex `(i + 1) % 3`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Triangle<T: Real> {
+    /// Vertex 0.
+    pub a: Vec3<T>,
+    /// Vertex 1.
+    pub b: Vec3<T>,
+    /// Vertex 2.
+    pub c: Vec3<T>,
+}
+
+/// The part of a triangle a contact lies on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+pub enum Feature {
+    /// The interior of the face.
+    Face,
+    /// Edge `i`, from vertex `i` to vertex `(i + 1) % 3`.
+    Edge(u8),
+    /// Vertex `i`.
+    Vertex(u8),
+}
+
+impl<T: Real> Triangle<T> {
+    /// A triangle from its three vertices.
+    #[must_use]
+    pub fn new(a: Vec3<T>, b: Vec3<T>, c: Vec3<T>) -> Self {
+        Triangle { a, b, c }
+    }
+
+    /// Vertex `i` (0, 1 or 2; taken modulo 3).
+    #[must_use]
+    pub fn vertex(&self, i: usize) -> &Vec3<T> {
+        match i % 3 {
+            0 => &self.a,
+            1 => &self.b,
+            _ => &self.c,
+        }
+    }
+
+    /// `(b - a) x (c - a)`: normal times twice the area.
+    #[must_use]
+    pub fn unnormalized_normal(&self) -> Vec3<T> {
+        cross(&(&self.b - &self.a), &(&self.c - &self.a))
+    }
+
+    /// The triangle with `origin` subtracted from every vertex (so that
+    /// `origin` becomes the new origin of coordinates).
+    #[must_use]
+    pub fn relative_to(&self, origin: &Vec3<T>) -> Self {
+        Triangle {
+            a: &self.a - origin,
+            b: &self.b - origin,
+            c: &self.c - origin,
+        }
+    }
+}
+
+impl Triangle<f64> {
+    /// Checks that every coordinate is finite and the triangle has a
+    /// non-zero area: `|(b-a) x (c-a)| > 16 eps |b-a| |c-a|` with `eps` the
+    /// f64 machine epsilon, i.e. the sine of the angle at `a` is above the
+    /// rounding noise of the cross product.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::DegenerateTriangle`], naming `index`.
+    pub fn validate(&self, index: usize) -> Result<(), Error> {
+        for (i, v) in [&self.a, &self.b, &self.c].into_iter().enumerate() {
+            if let Some(bad) = v.iter().find(|x| !x.is_finite()) {
+                return Err(Error::NonFinite {
+                    what: format!("triangle {index} vertex {i}"),
+                    value: *bad,
+                });
+            }
+        }
+        let ab = self.b - self.a;
+        let ac = self.c - self.a;
+        let area2 = norm_squared(&cross(&ab, &ac));
+        let bound = 16.0 * f64::EPSILON;
+        let limit = bound * bound * norm_squared(&ab) * norm_squared(&ac);
+        if !(area2 > limit) {
+            let reason = if ab == Vec3::zeros() || ac == Vec3::zeros() || self.b == self.c {
+                "two vertices coincide".to_string()
+            } else {
+                "the vertices are collinear".to_string()
+            };
+            return Err(Error::DegenerateTriangle { index, reason });
+        }
+        Ok(())
+    }
+}
+
+/// The point of `tri` closest to `p`, and the feature it lies on.
+///
+/// Voronoi-region classification by dot products (Ericson, *Real-Time
+/// Collision Detection*, 5.1.5). Rounding: each region test is a dot product
+/// or a difference of products of edge vectors with `p - vertex`; for points
+/// near a region boundary the feature may flip between neighbours, but the
+/// returned point is then close to both, so its distance error stays of the
+/// order of `u * (|edge|^2 + |p - a|^2)`. Pass coordinates relative to a
+/// nearby origin to keep them small.
+#[must_use]
+pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {
+    let zero = T::zero();
+    let ab = &tri.b - &tri.a;
+    let ac = &tri.c - &tri.a;
+    let ap = p - &tri.a;
+    let d1 = dot(&ab, &ap);
+    let d2 = dot(&ac, &ap);
+    if d1 <= zero && d2 <= zero {
+        return (tri.a.clone(), Feature::Vertex(0));
+    }
+    let bp = p - &tri.b;
+    let d3 = dot(&ab, &bp);
+    let d4 = dot(&ac, &bp);
+    if d3 >= zero && d4 <= d3 {
+        return (tri.b.clone(), Feature::Vertex(1));
+    }
+    let vc = d1.clone() * &d4 - d3.clone() * &d2;
+    if vc <= zero && d1 >= zero && d3 <= zero {
+        let v = d1.clone() / (d1 - &d3);
+        return (&tri.a + ab * v, Feature::Edge(0));
+    }
+    let cp = p - &tri.c;
+    let d5 = dot(&ab, &cp);
+    let d6 = dot(&ac, &cp);
+    if d6 >= zero && d5 <= d6 {
+        return (tri.c.clone(), Feature::Vertex(2));
+    }
+    let vb = d5.clone() * &d2 - d1 * &d6;
+    if vb <= zero && d2 >= zero && d6 <= zero {
+        let w = d2.clone() / (d2 - &d6);
+        return (&tri.a + ac * w, Feature::Edge(2));
+    }
+    let va = d3.clone() * &d6 - d5.clone() * &d4;
+    let d43 = d4 - &d3;
+    let d56 = d5 - &d6;
+    if va <= zero && d43 >= zero && d56 >= zero {
+        let w = d43.clone() / (d43 + &d56);
+        return (&tri.b + (&tri.c - &tri.b) * w, Feature::Edge(1));
+    }
+    let denom = va + &vb + &vc;
+    let v = vb / &denom;
+    let w = vc / &denom;
+    (&tri.a + ab * v + ac * w, Feature::Face)
+}

@@ -1,0 +1,82 @@
+//! Vector helpers on `nalgebra::Vector3<T>` for every [`Real`] backend.
+//!
+//! nalgebra's own `norm`/`normalize` need simba's `ComplexField`, which MPFR
+//! values do not implement; these helpers are built on [`dot`] and
+//! [`Real::sqrt`] instead, with one fixed evaluation order:
+//! `dot(a, b) = (a.x*b.x + a.y*b.y) + a.z*b.z`, each operation rounded once.
+
+use crate::Real;
+use nalgebra::Vector3;
+
+/// A 3-vector of any backend.
+pub type Vec3<T> = Vector3<T>;
+
+/// A vector built from `f64` components (rounded to nearest in `T`).
+#[must_use]
+pub fn vec3<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
+    Vector3::new(T::from_f64(x), T::from_f64(y), T::from_f64(z))
+}
+
+/// Converts an `f64` vector into backend `T` (rounding each component to
+/// nearest; exact where representable).
+#[must_use]
+pub fn from_f64<T: Real>(v: &Vector3<f64>) -> Vec3<T> {
+    vec3(v.x, v.y, v.z)
+}
+
+/// Converts a vector of backend `T` to `f64` (rounding to nearest).
+#[must_use]
+pub fn to_f64<T: Real>(v: &Vec3<T>) -> Vector3<f64> {
+    Vector3::new(v.x.to_f64(), v.y.to_f64(), v.z.to_f64())
+}
+
+/// Dot product, evaluated as `(a.x*b.x + a.y*b.y) + a.z*b.z`. Its rounding
+/// error is at most `3u * sum |a_i b_i|` (`u` the unit roundoff).
+#[must_use]
+pub fn dot<T: Real>(a: &Vec3<T>, b: &Vec3<T>) -> T {
+    a.x.clone() * &b.x + a.y.clone() * &b.y + a.z.clone() * &b.z
+}
+
+/// Cross product `a x b`, each component `a_i*b_j - a_j*b_i` with three
+/// roundings (error at most `2u * (|a_i b_j| + |a_j b_i|)` per component).
+#[must_use]
+pub fn cross<T: Real>(a: &Vec3<T>, b: &Vec3<T>) -> Vec3<T> {
+    Vector3::new(
+        a.y.clone() * &b.z - a.z.clone() * &b.y,
+        a.z.clone() * &b.x - a.x.clone() * &b.z,
+        a.x.clone() * &b.y - a.y.clone() * &b.x,
+    )
+}
+
+/// Squared Euclidean length, `dot(a, a)`.
+#[must_use]
+pub fn norm_squared<T: Real>(a: &Vec3<T>) -> T {
+    dot(a, a)
+}
+
+/// Euclidean length, `sqrt(dot(a, a))`.
+#[must_use]
+pub fn norm<T: Real>(a: &Vec3<T>) -> T {
+    norm_squared(a).sqrt()
+}
+
+/// `a / |a|`, or `None` when `|a|` is zero or not finite (never NaN).
+#[must_use]
+pub fn normalize<T: Real>(a: &Vec3<T>) -> Option<Vec3<T>> {
+    let n = norm(a);
+    if n > T::zero() && n.is_finite() {
+        Some(Vector3::new(
+            a.x.clone() / &n,
+            a.y.clone() / &n,
+            a.z.clone() / &n,
+        ))
+    } else {
+        None
+    }
+}
+
+/// `true` when all three components are finite.
+#[must_use]
+pub fn is_finite<T: Real>(a: &Vec3<T>) -> bool {
+    a.x.is_finite() && a.y.is_finite() && a.z.is_finite()
+}

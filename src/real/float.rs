@@ -1,0 +1,52 @@
+//! [`Real`] for the hardware floats `f32` and `f64`.
+
+use super::Real;
+
+macro_rules! impl_real_for_float {
+    ($t:ty, $name:literal) => {
+        impl Real for $t {
+            #[inline]
+            fn bits() -> u32 {
+                <$t>::MANTISSA_DIGITS
+            }
+            fn name() -> String {
+                $name.to_string()
+            }
+            #[inline]
+            fn from_f64(x: f64) -> Self {
+                x as $t
+            }
+            #[inline]
+            fn to_f64(&self) -> f64 {
+                *self as f64
+            }
+            #[inline]
+            fn sqrt(&self) -> Self {
+                <$t>::sqrt(*self)
+            }
+            #[inline]
+            fn abs(&self) -> Self {
+                <$t>::abs(*self)
+            }
+            #[inline]
+            fn mul_add(&self, a: &Self, b: &Self) -> Self {
+                <$t>::mul_add(*self, *a, *b)
+            }
+            #[inline]
+            fn is_finite(&self) -> bool {
+                <$t>::is_finite(*self)
+            }
+            #[inline]
+            fn is_sign_negative(&self) -> bool {
+                <$t>::is_sign_negative(*self)
+            }
+            #[cfg(feature = "mpfr")]
+            fn to_rug(&self) -> rug::Float {
+                rug::Float::with_val(<$t>::MANTISSA_DIGITS, *self)
+            }
+        }
+    };
+}
+
+impl_real_for_float!(f32, "f32");
+impl_real_for_float!(f64, "f64");

@@ -1,0 +1,123 @@
+//! The `Real` trait: one scalar interface for `f32`, `f64` and MPFR floats.
+//!
+//! Every algorithm in this crate is written once, generic over [`Real`], and
+//! instantiated per backend. The trait is deliberately small: exactly the
+//! operations the algorithms use, each with IEEE-754 round-to-nearest
+//! semantics (one rounding per operation, including [`Real::mul_add`]).
+//!
+//! `num_traits::Float` is not used because it requires `Copy`, which an
+//! arbitrary-precision MPFR value (heap-allocated limbs) cannot be. Instead
+//! the trait builds on [`nalgebra::Scalar`] and nalgebra's `Closed*Assign`
+//! traits so that `nalgebra::Vector3<T>` arithmetic works for every backend.
+//!
+//! # Faithfulness of the MPFR backend
+//! [`Mpfr<24>`] rounds exactly like `f32` and [`Mpfr<53>`] exactly like `f64`
+//! for every operation whose operands and result lie in the normal range
+//! (MPFR's exponent range is wider, so overflow and subnormal results
+//! differ). The test suite checks this bit for bit over thousands of random
+//! operation sequences, which makes `Mpfr<BITS>` a continuous precision dial.
+
+mod float;
+#[cfg(feature = "mpfr")]
+mod mpfr;
+
+#[cfg(feature = "mpfr")]
+pub use mpfr::{DYNAMIC, MAX_BITS, MIN_BITS, Mpfr, MpfrDyn, with_precision};
+
+use nalgebra::{ClosedAddAssign, ClosedDivAssign, ClosedMulAssign, ClosedSubAssign, Scalar};
+use num_traits::{One, Zero};
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A real-number backend: `f32`, `f64` or [`Mpfr<BITS>`](Mpfr).
+///
+/// Arithmetic is available by value (`a + b`) and with a borrowed right-hand
+/// side (`a + &b`), so MPFR code need not clone the right operand. All
+/// operations round to nearest, ties to even, once per operation.
+pub trait Real:
+    Scalar
+    + Zero
+    + One
+    + PartialOrd
+    + ClosedAddAssign
+    + ClosedSubAssign
+    + ClosedMulAssign
+    + ClosedDivAssign
+    + Neg<Output = Self>
+    + for<'a> Add<&'a Self, Output = Self>
+    + for<'a> Sub<&'a Self, Output = Self>
+    + for<'a> Mul<&'a Self, Output = Self>
+    + for<'a> Div<&'a Self, Output = Self>
+    + Send
+    + Sync
+{
+    /// Significand precision in bits, the implicit leading bit included
+    /// (24 for `f32`, 53 for `f64`, `BITS` for `Mpfr<BITS>`).
+    fn bits() -> u32;
+
+    /// A short name for reports and the command line: `f32`, `f64`,
+    /// `mpfr<BITS>` (for example `mpfr53`).
+    fn name() -> String;
+
+    /// Converts from `f64`, rounding to nearest. Exact whenever the value is
+    /// representable in this backend (always for `f64` and `Mpfr<BITS>` with
+    /// `BITS >= 53`).
+    fn from_f64(x: f64) -> Self;
+
+    /// Converts to `f64`, rounding to nearest. Exact for `f32`, `f64` and
+    /// `Mpfr<BITS>` with `BITS <= 53` in the normal range.
+    fn to_f64(&self) -> f64;
+
+    /// Square root, correctly rounded.
+    fn sqrt(&self) -> Self;
+
+    /// Absolute value (exact).
+    fn abs(&self) -> Self;
+
+    /// `self * a + b` with a single rounding (fused multiply-add).
+    fn mul_add(&self, a: &Self, b: &Self) -> Self;
+
+    /// `true` unless the value is NaN or infinite.
+    fn is_finite(&self) -> bool;
+
+    /// The IEEE sign bit (`true` for `-0.0` and negative NaN too): the
+    /// semantics of Fauerby's bit-level inside-triangle test.
+    fn is_sign_negative(&self) -> bool;
+
+    /// The value converted exactly to an MPFR float at its own precision.
+    #[cfg(feature = "mpfr")]
+    fn to_rug(&self) -> rug::Float;
+
+    /// Unit roundoff `u = 2^-bits`: the largest relative error of one
+    /// correctly rounded operation in the normal range.
+    #[must_use]
+    fn unit_roundoff() -> f64 {
+        (-(Self::bits() as f64)).exp2()
+    }
+
+    /// Machine epsilon `2^(1 - bits)`: the gap between 1 and the next value.
+    #[must_use]
+    fn machine_epsilon() -> f64 {
+        (1.0 - Self::bits() as f64).exp2()
+    }
+
+    /// The smaller of two values (`self` when they compare equal or
+    /// unordered).
+    #[must_use]
+    fn min(self, other: Self) -> Self {
+        if other < self { other } else { self }
+    }
+
+    /// The larger of two values (`self` when they compare equal or
+    /// unordered).
+    #[must_use]
+    fn max(self, other: Self) -> Self {
+        if other > self { other } else { self }
+    }
+
+    /// A value converted from `f64` (shorthand used by the algorithms for
+    /// their constants, so every backend starts from the same bits).
+    #[must_use]
+    fn c(x: f64) -> Self {
+        Self::from_f64(x)
+    }
+}

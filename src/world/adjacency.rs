@@ -1,0 +1,95 @@
+//! Edge and vertex adjacency, for telling internal edges from real ones.
+//!
+//! Vertices are welded by exact position first, so a soup that repeats a
+//! vertex instead of sharing its index still gets its adjacency.
+
+use nalgebra::Vector3;
+use std::collections::HashMap;
+
+/// Which triangles meet at each edge and vertex.
+#[derive(Clone, Debug, Default)]
+pub struct Adjacency {
+    /// `neighbours[t][i]`: the one other triangle sharing edge `i` of
+    /// triangle `t`, or `None` on a boundary or non-manifold edge.
+    neighbours: Vec<[Option<u32>; 3]>,
+    /// Triangles around each welded vertex, as offsets into `around`.
+    offsets: Vec<u32>,
+    around: Vec<u32>,
+    /// Welded vertex id of each input vertex.
+    weld: Vec<u32>,
+}
+
+impl Adjacency {
+    /// Computes the adjacency of the given triangles over `vertices`.
+    #[must_use]
+    pub fn build(vertices: &[Vector3<f64>], triangles: &[[u32; 3]]) -> Self {
+        let mut ids: HashMap<[u64; 3], u32> = HashMap::with_capacity(vertices.len());
+        let weld: Vec<u32> = vertices
+            .iter()
+            .map(|v| {
+                // +0.0 and -0.0 are the same point.
+                let key = [v.x + 0.0, v.y + 0.0, v.z + 0.0].map(f64::to_bits);
+                let next = ids.len() as u32;
+                *ids.entry(key).or_insert(next)
+            })
+            .collect();
+        let welded = |t: &[u32; 3]| t.map(|i| weld[i as usize]);
+        let mut edges: HashMap<(u32, u32), Vec<(u32, u8)>> =
+            HashMap::with_capacity(triangles.len() * 2);
+        for (t, tri) in triangles.iter().enumerate() {
+            let w = welded(tri);
+            for i in 0..3 {
+                let (p, q) = (w[i], w[(i + 1) % 3]);
+                edges
+                    .entry((p.min(q), p.max(q)))
+                    .or_default()
+                    .push((t as u32, i as u8));
+            }
+        }
+        let mut neighbours = vec![[None; 3]; triangles.len()];
+        for sharing in edges.values() {
+            if let [(t0, e0), (t1, e1)] = sharing[..] {
+                neighbours[t0 as usize][e0 as usize] = Some(t1);
+                neighbours[t1 as usize][e1 as usize] = Some(t0);
+            }
+        }
+        let mut counts = vec![0u32; ids.len() + 1];
+        for tri in triangles {
+            for v in welded(tri) {
+                counts[v as usize + 1] += 1;
+            }
+        }
+        for i in 1..counts.len() {
+            counts[i] += counts[i - 1];
+        }
+        let offsets = counts.clone();
+        let mut around = vec![0u32; *counts.last().unwrap_or(&0) as usize];
+        for (t, tri) in triangles.iter().enumerate() {
+            for v in welded(tri) {
+                around[counts[v as usize] as usize] = t as u32;
+                counts[v as usize] += 1;
+            }
+        }
+        Adjacency {
+            neighbours,
+            offsets,
+            around,
+            weld,
+        }
+    }
+
+    /// The triangle on the other side of edge `edge` of `triangle`, if the
+    /// edge is shared by exactly two triangles.
+    #[must_use]
+    pub fn neighbour(&self, triangle: u32, edge: u8) -> Option<u32> {
+        self.neighbours[triangle as usize][edge as usize % 3]
+    }
+
+    /// Every triangle that has the (welded) vertex `vertex` as a corner, in
+    /// increasing order.
+    #[must_use]
+    pub fn triangles_around(&self, vertex: u32) -> &[u32] {
+        let w = self.weld[vertex as usize] as usize;
+        &self.around[self.offsets[w] as usize..self.offsets[w + 1] as usize]
+    }
+}

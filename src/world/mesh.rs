@@ -1,0 +1,276 @@
+//! The validated mesh (`f64`) and its conversion into a backend.
+
+use super::obj::parse_obj;
+use super::{Aabb, Adjacency, Bvh};
+use crate::geom::{Triangle, Vec3, from_f64};
+use crate::{Error, Real};
+use nalgebra::Vector3;
+use std::path::Path;
+use std::sync::Arc;
+
+/// A validated, indexed triangle mesh in `f64` with adjacency and a BVH.
+///
+/// Every triangle has finite coordinates and a non-zero area
+/// ([`Triangle::validate`]). Invalid input triangles are either an error
+/// ([`TriangleMesh::new`]) or skipped and listed in
+/// [`TriangleMesh::skipped`] ([`TriangleMesh::new_skipping_invalid`] and the
+/// OBJ loaders), never dropped silently.
+#[derive(Clone, Debug)]
+pub struct TriangleMesh {
+    vertices: Vec<Vector3<f64>>,
+    triangles: Vec<[u32; 3]>,
+    adjacency: Adjacency,
+    bvh: Bvh,
+    bounds: Aabb,
+    skipped: Vec<Error>,
+}
+
+impl TriangleMesh {
+    /// A mesh from vertex positions and triangles (indices into
+    /// `vertices`), rejecting the first invalid triangle.
+    ///
+    /// # Errors
+    /// [`Error::VertexIndexOutOfRange`], [`Error::NonFinite`],
+    /// [`Error::DegenerateTriangle`] naming the first bad triangle, or
+    /// [`Error::EmptyMesh`].
+    pub fn new(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
+        let (mesh, mut skipped) = Self::build(vertices, triangles, |_, e| e)?;
+        match skipped.is_empty() {
+            true => Ok(mesh),
+            false => Err(skipped.swap_remove(0)),
+        }
+    }
+
+    /// A mesh from vertex positions and triangles that leaves out invalid
+    /// triangles and lists why in [`TriangleMesh::skipped`].
+    ///
+    /// # Errors
+    /// [`Error::EmptyMesh`] when no valid triangle remains.
+    pub fn new_skipping_invalid(
+        vertices: Vec<[f64; 3]>,
+        triangles: Vec<[u32; 3]>,
+    ) -> Result<Self, Error> {
+        let (mut mesh, skipped) = Self::build(vertices, triangles, |_, e| e)?;
+        mesh.skipped = skipped;
+        Ok(mesh)
+    }
+
+    /// Loads a Wavefront OBJ file; degenerate faces are skipped and listed
+    /// in [`TriangleMesh::skipped`] with their line numbers.
+    ///
+    /// # Errors
+    /// [`Error::Io`] if the file cannot be read, [`Error::Obj`] (with the
+    /// line number) if it is malformed, [`Error::EmptyMesh`] if it holds no
+    /// valid triangle.
+    pub fn from_obj_file(path: &Path) -> Result<Self, Error> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        Self::from_obj_str(&text, path)
+    }
+
+    /// Parses OBJ text (`path` only names it in errors); see
+    /// [`TriangleMesh::from_obj_file`].
+    ///
+    /// # Errors
+    /// As [`TriangleMesh::from_obj_file`].
+    pub fn from_obj_str(text: &str, path: &Path) -> Result<Self, Error> {
+        let obj = parse_obj(text, path)?;
+        let lines = obj.lines;
+        let (mut mesh, skipped) = Self::build(obj.vertices, obj.triangles, |t, e| Error::Obj {
+            path: path.to_path_buf(),
+            line: lines[t],
+            message: e.to_string(),
+        })?;
+        mesh.skipped = skipped;
+        Ok(mesh)
+    }
+
+    /// Validates and indexes; invalid triangles go to the returned list
+    /// (mapped through `report`, which gets the input index).
+    fn build(
+        vertices: Vec<[f64; 3]>,
+        triangles: Vec<[u32; 3]>,
+        report: impl Fn(usize, Error) -> Error,
+    ) -> Result<(Self, Vec<Error>), Error> {
+        let vertices: Vec<Vector3<f64>> = vertices.into_iter().map(Vector3::from).collect();
+        let mut kept = Vec::with_capacity(triangles.len());
+        let mut skipped = Vec::new();
+        for (index, tri) in triangles.into_iter().enumerate() {
+            let checked = tri
+                .iter()
+                .find(|&&v| v as usize >= vertices.len())
+                .map(|&v| Error::VertexIndexOutOfRange {
+                    triangle: index,
+                    vertex: v as usize,
+                    vertex_count: vertices.len(),
+                })
+                .map_or_else(|| corners(&vertices, &tri).validate(index), Err);
+            match checked {
+                Ok(()) => kept.push(tri),
+                Err(e) => skipped.push(report(index, e)),
+            }
+        }
+        if kept.is_empty() {
+            return Err(skipped.into_iter().next().unwrap_or(Error::EmptyMesh));
+        }
+        let boxes: Vec<Aabb> = kept
+            .iter()
+            .map(|t| {
+                let mut b = Aabb::empty();
+                t.iter().for_each(|&v| b.grow(&vertices[v as usize]));
+                b
+            })
+            .collect();
+        let mut bounds = Aabb::empty();
+        boxes.iter().for_each(|b| bounds.merge(b));
+        let mesh = TriangleMesh {
+            adjacency: Adjacency::build(&vertices, &kept),
+            bvh: Bvh::build(&boxes),
+            vertices,
+            triangles: kept,
+            bounds,
+            skipped: Vec::new(),
+        };
+        Ok((mesh, skipped))
+    }
+
+    /// The vertex positions.
+    #[must_use]
+    pub fn vertices(&self) -> &[Vector3<f64>] {
+        &self.vertices
+    }
+
+    /// The triangles as vertex indices.
+    #[must_use]
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// Triangle `t` with its vertex positions.
+    #[must_use]
+    pub fn triangle(&self, t: u32) -> Triangle<f64> {
+        corners(&self.vertices, &self.triangles[t as usize])
+    }
+
+    /// Number of triangles.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// `true` if there are no triangles (never, for a constructed mesh).
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// Edge and vertex adjacency.
+    #[must_use]
+    pub fn adjacency(&self) -> &Adjacency {
+        &self.adjacency
+    }
+
+    /// The bounding-volume hierarchy.
+    #[must_use]
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
+    /// The box around all triangles.
+    #[must_use]
+    pub fn bounds(&self) -> &Aabb {
+        &self.bounds
+    }
+
+    /// The input triangles that were left out, each with the reason.
+    #[must_use]
+    pub fn skipped(&self) -> &[Error] {
+        &self.skipped
+    }
+
+    /// The mesh translated by `offset` (every vertex; the rounding of each
+    /// sum is the caller's to accept).
+    #[must_use]
+    pub fn translated(&self, offset: &Vector3<f64>) -> Self {
+        let vertices = self.vertices.iter().map(|v| (v + offset).into()).collect();
+        let (mut mesh, skipped) = Self::build(vertices, self.triangles.clone(), |_, e| e)
+            .expect("translation of a valid mesh");
+        mesh.skipped = self.skipped.iter().cloned().chain(skipped).collect();
+        mesh
+    }
+}
+
+fn corners(vertices: &[Vector3<f64>], t: &[u32; 3]) -> Triangle<f64> {
+    Triangle::new(
+        vertices[t[0] as usize],
+        vertices[t[1] as usize],
+        vertices[t[2] as usize],
+    )
+}
+
+/// A mesh converted into backend `T`: the vertices rounded to nearest in `T`
+/// and a shared handle to the `f64` mesh, its adjacency and BVH.
+#[derive(Clone, Debug)]
+pub struct World<T: Real> {
+    mesh: Arc<TriangleMesh>,
+    vertices: Vec<Vec3<T>>,
+    /// The largest distance, per coordinate, between an `f64` vertex and
+    /// its `T` rounding (rounded up): BVH queries widen by it.
+    slack: f64,
+}
+
+impl<T: Real> World<T> {
+    /// Converts `mesh` into backend `T`.
+    #[must_use]
+    pub fn new(mesh: Arc<TriangleMesh>) -> Self {
+        let vertices: Vec<Vec3<T>> = mesh.vertices.iter().map(from_f64).collect();
+        let slack = mesh
+            .vertices
+            .iter()
+            .zip(&vertices)
+            .flat_map(|(v, w)| (0..3).map(move |i| (w[i].to_f64() - v[i]).abs()))
+            .fold(0.0, f64::max);
+        let slack = if slack > 0.0 {
+            (slack * (1.0 + 4.0 * f64::EPSILON)).next_up()
+        } else {
+            0.0
+        };
+        World {
+            mesh,
+            vertices,
+            slack,
+        }
+    }
+
+    /// The `f64` mesh this world was made from.
+    #[must_use]
+    pub fn mesh(&self) -> &TriangleMesh {
+        &self.mesh
+    }
+
+    /// The shared handle to the mesh.
+    #[must_use]
+    pub fn mesh_arc(&self) -> &Arc<TriangleMesh> {
+        &self.mesh
+    }
+
+    /// Triangle `t` in backend `T`.
+    #[must_use]
+    pub fn triangle(&self, t: u32) -> Triangle<T> {
+        let [a, b, c] = self.mesh.triangles[t as usize].map(|i| self.vertices[i as usize].clone());
+        Triangle::new(a, b, c)
+    }
+
+    /// Replaces `out` with every triangle whose bounds overlap the box
+    /// `[min, max]` (in `T`), in a deterministic order. Never misses a
+    /// triangle of this world that meets the box: the box is rounded
+    /// outward into `f64` and widened by the conversion slack.
+    pub fn candidates(&self, min: &Vec3<T>, max: &Vec3<T>, out: &mut Vec<u32>) {
+        out.clear();
+        let lo = Vector3::from_fn(|i, _| (min[i].to_f64() - self.slack).next_down());
+        let hi = Vector3::from_fn(|i, _| (max[i].to_f64() + self.slack).next_up());
+        self.mesh.bvh.query(&Aabb { min: lo, max: hi }, out);
+    }
+}
