@@ -27,9 +27,7 @@ pub enum Error {
         reason: String,
     },
     /// A triangle refers to a vertex that does not exist.
-    #[error(
-        "triangle {triangle} refers to vertex {vertex}, but there are only {vertex_count} vertices"
-    )]
+    #[error("triangle {triangle} refers to vertex {vertex}, but there are only {vertex_count} vertices")]
     VertexIndexOutOfRange {
         /// Index of the triangle.
         triangle: usize,

@@ -19,6 +19,7 @@ pub mod detect;
 pub mod error;
 pub mod geom;
 pub mod real;
+pub mod respond;
 pub mod world;
 
 pub use error::{Error, Result};

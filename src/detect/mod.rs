@@ -70,10 +70,7 @@ pub struct DetectOptions {
 
 impl Default for DetectOptions {
     fn default() -> Self {
-        DetectOptions {
-            two_sided: true,
-            touch_ulps: 16.0,
-        }
+        DetectOptions { two_sided: true, touch_ulps: 16.0 }
     }
 }
 
@@ -144,13 +141,7 @@ impl<T: Real> Neighbourhood<T> {
         vel: &Vec3<T>,
         opts: &DetectOptions,
     ) -> Option<Hit<T>> {
-        earliest_hit(
-            detection,
-            self.triangles.iter().map(|(i, t)| (*i, t)),
-            base,
-            vel,
-            opts,
-        )
+        earliest_hit(detection, self.triangles.iter().map(|(i, t)| (*i, t)), base, vel, opts)
     }
 }
 
@@ -204,16 +195,11 @@ pub fn sweep_world<T: Real>(
     let hood = Neighbourhood::gather(world, body, origin.clone(), &min, &max, &mut Vec::new());
     let base = body.to_espace(&(position - &origin));
     let vel = body.to_espace(velocity);
-    Ok(hood
-        .earliest_hit(detection, &base, &vel, opts)
-        .map(|h| Hit {
-            point: body.from_espace(&h.point) + &origin,
-            normal: normalize(&Vec3::from_fn(|i, _| {
-                h.normal[i].clone() / &body.radii()[i]
-            }))
-            .unwrap_or(h.normal),
-            ..h
-        }))
+    Ok(hood.earliest_hit(detection, &base, &vel, opts).map(|h| Hit {
+        point: body.from_espace(&h.point) + &origin,
+        normal: normalize(&Vec3::from_fn(|i, _| h.normal[i].clone() / &body.radii()[i])).unwrap_or(h.normal),
+        ..h
+    }))
 }
 
 /// The world-space box that holds `body` everywhere on the segment from
@@ -240,15 +226,8 @@ pub fn check_finite<T: Real>(what: &str, v: &Vec3<T>) -> Result<(), Error> {
     if is_finite(v) {
         return Ok(());
     }
-    let value = v
-        .iter()
-        .map(Real::to_f64)
-        .find(|x| !x.is_finite())
-        .unwrap_or(f64::NAN);
-    Err(Error::NonFinite {
-        what: what.to_string(),
-        value,
-    })
+    let value = v.iter().map(Real::to_f64).find(|x| !x.is_finite()).unwrap_or(f64::NAN);
+    Err(Error::NonFinite { what: what.to_string(), value })
 }
 
 /// Fauerby's `nearestDistance`: how far along `vel` the hit lies.

@@ -6,8 +6,7 @@ use super::roots::{stable_entry_root, textbook_lowest_root};
 use super::{DetectOptions, Hit};
 use crate::Real;
 use crate::geom::{
-    Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared,
-    normalize,
+    Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize,
 };
 
 /// Where and how a contact was found: the sphere centre and the contact
@@ -24,26 +23,13 @@ impl<T: Real> Touch<T> {
     /// The hit record; `origin` is added to the point to return it in the
     /// caller's coordinates (the normal is computed before, where the
     /// coordinates are small).
-    fn into_hit(
-        self,
-        origin: Option<&Vec3<T>>,
-        fallback: &Vec3<T>,
-        index: u32,
-        overlapping: bool,
-    ) -> Hit<T> {
+    fn into_hit(self, origin: Option<&Vec3<T>>, fallback: &Vec3<T>, index: u32, overlapping: bool) -> Hit<T> {
         let normal = normalize(&(&self.centre - &self.point)).unwrap_or_else(|| fallback.clone());
         let point = match origin {
             Some(o) => self.point + o,
             None => self.point,
         };
-        Hit {
-            t: self.t,
-            point,
-            normal,
-            feature: self.feature,
-            triangle: index,
-            started_overlapping: overlapping,
-        }
+        Hit { t: self.t, point, normal, feature: self.feature, triangle: index, started_overlapping: overlapping }
     }
 }
 
@@ -53,12 +39,7 @@ impl<T: Real> Touch<T> {
 /// three vertices and three edges with the textbook root finder. Defects are
 /// kept: see [`textbook_lowest_root`] and [`fauerby_point_in_triangle`].
 #[must_use]
-pub fn sweep_fauerby<T: Real>(
-    tri: &Triangle<T>,
-    base: &Vec3<T>,
-    vel: &Vec3<T>,
-    index: u32,
-) -> Option<Hit<T>> {
+pub fn sweep_fauerby<T: Real>(tri: &Triangle<T>, base: &Vec3<T>, vel: &Vec3<T>, index: u32) -> Option<Hit<T>> {
     let zero = T::zero();
     let one = T::one();
     // His PLANE(p1, p2, p3) normalises without a guard; his normalize()
@@ -98,12 +79,7 @@ pub fn sweep_fauerby<T: Real>(
         if fauerby_point_in_triangle(&plane_point, tri) {
             let overlapping = t0 == zero;
             let centre = base + vel * t0.clone();
-            let touch = Touch {
-                t: t0,
-                point: plane_point,
-                centre,
-                feature: Feature::Face,
-            };
+            let touch = Touch { t: t0, point: plane_point, centre, feature: Feature::Face };
             return Some(touch.into_hit(None, &plane.normal, index, overlapping));
         }
     }
@@ -126,12 +102,10 @@ pub fn sweep_fauerby<T: Real>(
         let edge_sq = norm_squared(&edge);
         let edge_dot_velocity = dot(&edge, vel);
         let edge_dot_btv = dot(&edge, &base_to_vertex);
-        let a =
-            edge_sq.clone() * -velocity_sq.clone() + edge_dot_velocity.clone() * &edge_dot_velocity;
-        let b = edge_sq.clone() * (T::c(2.0) * dot(vel, &base_to_vertex))
-            - T::c(2.0) * &edge_dot_velocity * &edge_dot_btv;
-        let c = edge_sq.clone() * (one.clone() - norm_squared(&base_to_vertex))
-            + edge_dot_btv.clone() * &edge_dot_btv;
+        let a = edge_sq.clone() * -velocity_sq.clone() + edge_dot_velocity.clone() * &edge_dot_velocity;
+        let b =
+            edge_sq.clone() * (T::c(2.0) * dot(vel, &base_to_vertex)) - T::c(2.0) * &edge_dot_velocity * &edge_dot_btv;
+        let c = edge_sq.clone() * (one.clone() - norm_squared(&base_to_vertex)) + edge_dot_btv.clone() * &edge_dot_btv;
         if let Some(root) = textbook_lowest_root(&a, &b, &c, &t) {
             let f = (edge_dot_velocity * &root - &edge_dot_btv) / &edge_sq;
             if f >= zero && f <= one {
@@ -143,15 +117,7 @@ pub fn sweep_fauerby<T: Real>(
     let (point, feature) = found?;
     let centre = base + vel * t.clone();
     let overlapping = t == zero;
-    Some(
-        Touch {
-            t,
-            point,
-            centre,
-            feature,
-        }
-        .into_hit(None, &plane.normal, index, overlapping),
-    )
+    Some(Touch { t, point, centre, feature }.into_hit(None, &plane.normal, index, overlapping))
 }
 
 /// Fauerby's `checkPointInTriangle`: barycentric-like quantities
@@ -213,23 +179,16 @@ pub fn sweep_robust<T: Real>(
     let one = T::one();
     let rel = tri.relative_to(base);
     let p = [&rel.a, &rel.b, &rel.c];
-    let scale = p
-        .iter()
-        .copied()
-        .chain([vel])
-        .flat_map(|v| v.iter())
-        .fold(one.clone(), |m, x| m.max(x.abs()));
+    let scale = p.iter().copied().chain([vel]).flat_map(|v| v.iter()).fold(one.clone(), |m, x| m.max(x.abs()));
     let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * &scale;
     let mut normal = normalize(&rel.unnormalized_normal());
 
     // Which side the centre (the origin, now) is on, from the nearest vertex.
     let mut plane_dist = zero.clone();
     if let Some(n) = &normal {
-        let nearest = p.iter().min_by(|u, v| {
-            norm_squared(*u)
-                .partial_cmp(&norm_squared(*v))
-                .unwrap_or(std::cmp::Ordering::Equal)
-        })?;
+        let nearest = p
+            .iter()
+            .min_by(|u, v| norm_squared(*u).partial_cmp(&norm_squared(*v)).unwrap_or(std::cmp::Ordering::Equal))?;
         plane_dist = -dot(n, nearest);
         if plane_dist < zero {
             if !opts.two_sided {
@@ -246,11 +205,7 @@ pub fn sweep_robust<T: Real>(
     let (closest, feature) = closest_point_on_triangle(&origin, &rel);
     let dist = norm(&closest);
     if dist <= one.clone() + &tol {
-        let sep = if dist > tol {
-            -closest.clone() / dist.clone()
-        } else {
-            face_normal.clone()
-        };
+        let sep = if dist > tol { -closest.clone() / dist.clone() } else { face_normal.clone() };
         if dot(&sep, vel) < zero {
             let overlapping = dist < one - &tol;
             return Some(Hit {
@@ -316,12 +271,7 @@ pub fn sweep_robust<T: Real>(
         let centre = vel * t.clone();
         let f = dot(&(&centre - a), &e) / &e2;
         if f >= zero && f <= one {
-            best = Some(Touch {
-                t,
-                point: a + e * f,
-                centre,
-                feature: Feature::Edge(i as u8),
-            });
+            best = Some(Touch { t, point: a + e * f, centre, feature: Feature::Edge(i as u8) });
         }
     }
     let v2 = norm_squared(vel);
@@ -332,12 +282,7 @@ pub fn sweep_robust<T: Real>(
         };
         if better(&t, &best) {
             let centre = vel * t.clone();
-            best = Some(Touch {
-                t,
-                point: (*v).clone(),
-                centre,
-                feature: Feature::Vertex(i as u8),
-            });
+            best = Some(Touch { t, point: (*v).clone(), centre, feature: Feature::Vertex(i as u8) });
         }
     }
     Some(best?.into_hit(Some(base), &face_normal, index, false))

@@ -30,13 +30,7 @@ impl<T: Real> Ellipsoid<T> {
                 return Err(Error::InvalidRadius { axis, value: r });
             }
         }
-        Ok(Ellipsoid {
-            radii: Vector3::new(
-                T::from_f64(radii[0]),
-                T::from_f64(radii[1]),
-                T::from_f64(radii[2]),
-            ),
-        })
+        Ok(Ellipsoid { radii: Vector3::new(T::from_f64(radii[0]), T::from_f64(radii[1]), T::from_f64(radii[2])) })
     }
 
     /// A sphere of radius `r`.
@@ -62,40 +56,24 @@ impl<T: Real> Ellipsoid<T> {
     /// World space to eSpace: divides each coordinate by its radius.
     #[must_use]
     pub fn to_espace(&self, p: &Vec3<T>) -> Vec3<T> {
-        Vector3::new(
-            p.x.clone() / &self.radii.x,
-            p.y.clone() / &self.radii.y,
-            p.z.clone() / &self.radii.z,
-        )
+        Vector3::new(p.x.clone() / &self.radii.x, p.y.clone() / &self.radii.y, p.z.clone() / &self.radii.z)
     }
 
     /// eSpace to world space: multiplies each coordinate by its radius.
     #[must_use]
     pub fn from_espace(&self, p: &Vec3<T>) -> Vec3<T> {
-        Vector3::new(
-            p.x.clone() * &self.radii.x,
-            p.y.clone() * &self.radii.y,
-            p.z.clone() * &self.radii.z,
-        )
+        Vector3::new(p.x.clone() * &self.radii.x, p.y.clone() * &self.radii.y, p.z.clone() * &self.radii.z)
     }
 
     /// The smallest radius.
     #[must_use]
     pub fn min_radius(&self) -> T {
-        self.radii
-            .x
-            .clone()
-            .min(self.radii.y.clone())
-            .min(self.radii.z.clone())
+        self.radii.x.clone().min(self.radii.y.clone()).min(self.radii.z.clone())
     }
 
     /// The largest radius.
     #[must_use]
     pub fn max_radius(&self) -> T {
-        self.radii
-            .x
-            .clone()
-            .max(self.radii.y.clone())
-            .max(self.radii.z.clone())
+        self.radii.x.clone().max(self.radii.y.clone()).max(self.radii.z.clone())
     }
 }

@@ -55,11 +55,7 @@ impl<T: Real> Triangle<T> {
     /// `origin` becomes the new origin of coordinates).
     #[must_use]
     pub fn relative_to(&self, origin: &Vec3<T>) -> Self {
-        Triangle {
-            a: &self.a - origin,
-            b: &self.b - origin,
-            c: &self.c - origin,
-        }
+        Triangle { a: &self.a - origin, b: &self.b - origin, c: &self.c - origin }
     }
 }
 
@@ -74,10 +70,7 @@ impl Triangle<f64> {
     pub fn validate(&self, index: usize) -> Result<(), Error> {
         for (i, v) in [&self.a, &self.b, &self.c].into_iter().enumerate() {
             if let Some(bad) = v.iter().find(|x| !x.is_finite()) {
-                return Err(Error::NonFinite {
-                    what: format!("triangle {index} vertex {i}"),
-                    value: *bad,
-                });
+                return Err(Error::NonFinite { what: format!("triangle {index} vertex {i}"), value: *bad });
             }
         }
         let ab = self.b - self.a;

@@ -65,11 +65,7 @@ pub fn norm<T: Real>(a: &Vec3<T>) -> T {
 pub fn normalize<T: Real>(a: &Vec3<T>) -> Option<Vec3<T>> {
     let n = norm(a);
     if n > T::zero() && n.is_finite() {
-        Some(Vector3::new(
-            a.x.clone() / &n,
-            a.y.clone() / &n,
-            a.z.clone() / &n,
-        ))
+        Some(Vector3::new(a.x.clone() / &n, a.y.clone() / &n, a.z.clone() / &n))
     } else {
         None
     }

@@ -64,11 +64,7 @@ fn check_bits(bits: u32) -> Result<(), Error> {
     if (MIN_BITS..=MAX_BITS).contains(&bits) {
         Ok(())
     } else {
-        Err(Error::PrecisionOutOfRange {
-            bits,
-            min: MIN_BITS,
-            max: MAX_BITS,
-        })
+        Err(Error::PrecisionOutOfRange { bits, min: MIN_BITS, max: MAX_BITS })
     }
 }
 
@@ -77,17 +73,8 @@ impl<const BITS: u32> Mpfr<BITS> {
     #[inline]
     #[must_use]
     pub fn precision() -> u32 {
-        const {
-            assert!(
-                BITS == DYNAMIC || BITS >= MIN_BITS,
-                "Mpfr<BITS>: BITS must be 0 (dynamic) or at least 2"
-            )
-        };
-        if BITS == DYNAMIC {
-            DYNAMIC_BITS.with(Cell::get)
-        } else {
-            BITS
-        }
+        const { assert!(BITS == DYNAMIC || BITS >= MIN_BITS, "Mpfr<BITS>: BITS must be 0 (dynamic) or at least 2") };
+        if BITS == DYNAMIC { DYNAMIC_BITS.with(Cell::get) } else { BITS }
     }
 
     /// Wraps an MPFR value, rounding it to this type's precision.
@@ -190,10 +177,7 @@ impl<const BITS: u32> Real for Mpfr<BITS> {
         Mpfr(Float::with_val(self.0.prec(), self.0.abs_ref()))
     }
     fn mul_add(&self, a: &Self, b: &Self) -> Self {
-        Mpfr(Float::with_val(
-            self.0.prec(),
-            self.0.mul_add_ref(&a.0, &b.0),
-        ))
+        Mpfr(Float::with_val(self.0.prec(), self.0.mul_add_ref(&a.0, &b.0)))
     }
     fn is_finite(&self) -> bool {
         self.0.is_finite()

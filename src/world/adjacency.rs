@@ -34,16 +34,12 @@ impl Adjacency {
             })
             .collect();
         let welded = |t: &[u32; 3]| t.map(|i| weld[i as usize]);
-        let mut edges: HashMap<(u32, u32), Vec<(u32, u8)>> =
-            HashMap::with_capacity(triangles.len() * 2);
+        let mut edges: HashMap<(u32, u32), Vec<(u32, u8)>> = HashMap::with_capacity(triangles.len() * 2);
         for (t, tri) in triangles.iter().enumerate() {
             let w = welded(tri);
             for i in 0..3 {
                 let (p, q) = (w[i], w[(i + 1) % 3]);
-                edges
-                    .entry((p.min(q), p.max(q)))
-                    .or_default()
-                    .push((t as u32, i as u8));
+                edges.entry((p.min(q), p.max(q))).or_default().push((t as u32, i as u8));
             }
         }
         let mut neighbours = vec![[None; 3]; triangles.len()];
@@ -70,12 +66,7 @@ impl Adjacency {
                 counts[v as usize] += 1;
             }
         }
-        Adjacency {
-            neighbours,
-            offsets,
-            around,
-            weld,
-        }
+        Adjacency { neighbours, offsets, around, weld }
     }
 
     /// The triangle on the other side of edge `edge` of `triangle`, if the

@@ -20,10 +20,7 @@ impl Aabb {
     /// The empty box (grows from nothing).
     #[must_use]
     pub fn empty() -> Self {
-        Aabb {
-            min: Vector3::repeat(f64::INFINITY),
-            max: Vector3::repeat(f64::NEG_INFINITY),
-        }
+        Aabb { min: Vector3::repeat(f64::INFINITY), max: Vector3::repeat(f64::NEG_INFINITY) }
     }
 
     /// Grows the box to contain `p`.
@@ -54,11 +51,7 @@ impl Aabb {
     #[must_use]
     pub fn half_area(&self) -> f64 {
         let d = self.max - self.min;
-        if d.x < 0.0 {
-            0.0
-        } else {
-            d.x * d.y + d.y * d.z + d.z * d.x
-        }
+        if d.x < 0.0 { 0.0 } else { d.x * d.y + d.y * d.z + d.z * d.x }
     }
 
     /// The box centre.
@@ -122,26 +115,16 @@ impl Bvh {
             cbounds.grow(&centres[t as usize]);
         }
         let id = self.nodes.len();
-        self.nodes.push(Node {
-            bounds,
-            index: start as u32,
-            count: (end - start) as u32,
-        });
+        self.nodes.push(Node { bounds, index: start as u32, count: (end - start) as u32 });
         if end - start <= LEAF_SIZE {
             return id;
         }
-        let mid = if depth < SAH_DEPTH {
-            self.split(boxes, centres, &cbounds, start, end)
-        } else {
-            None
-        };
+        let mid = if depth < SAH_DEPTH { self.split(boxes, centres, &cbounds, start, end) } else { None };
         let mid = mid.unwrap_or_else(|| {
             let axis = (cbounds.max - cbounds.min).imax();
             let half = (end - start) / 2;
             self.order[start..end].select_nth_unstable_by(half, |&p, &q| {
-                centres[p as usize][axis]
-                    .total_cmp(&centres[q as usize][axis])
-                    .then(p.cmp(&q))
+                centres[p as usize][axis].total_cmp(&centres[q as usize][axis]).then(p.cmp(&q))
             });
             start + half
         });
@@ -169,9 +152,7 @@ impl Bvh {
         if !(width > 0.0) {
             return None;
         }
-        let bin_of = |t: u32| {
-            (((centres[t as usize][axis] - lo) / width * BINS as f64) as usize).min(BINS - 1)
-        };
+        let bin_of = |t: u32| (((centres[t as usize][axis] - lo) / width * BINS as f64) as usize).min(BINS - 1);
         let mut bins = [(Aabb::empty(), 0usize); BINS];
         for &t in &self.order[start..end] {
             let b = &mut bins[bin_of(t)];

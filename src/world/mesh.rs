@@ -46,10 +46,7 @@ impl TriangleMesh {
     ///
     /// # Errors
     /// [`Error::EmptyMesh`] when no valid triangle remains.
-    pub fn new_skipping_invalid(
-        vertices: Vec<[f64; 3]>,
-        triangles: Vec<[u32; 3]>,
-    ) -> Result<Self, Error> {
+    pub fn new_skipping_invalid(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
         let (mut mesh, skipped) = Self::build(vertices, triangles, |_, e| e)?;
         mesh.skipped = skipped;
         Ok(mesh)
@@ -63,10 +60,8 @@ impl TriangleMesh {
     /// line number) if it is malformed, [`Error::EmptyMesh`] if it holds no
     /// valid triangle.
     pub fn from_obj_file(path: &Path) -> Result<Self, Error> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })?;
         Self::from_obj_str(&text, path)
     }
 
@@ -195,19 +190,15 @@ impl TriangleMesh {
     #[must_use]
     pub fn translated(&self, offset: &Vector3<f64>) -> Self {
         let vertices = self.vertices.iter().map(|v| (v + offset).into()).collect();
-        let (mut mesh, skipped) = Self::build(vertices, self.triangles.clone(), |_, e| e)
-            .expect("translation of a valid mesh");
+        let (mut mesh, skipped) =
+            Self::build(vertices, self.triangles.clone(), |_, e| e).expect("translation of a valid mesh");
         mesh.skipped = self.skipped.iter().cloned().chain(skipped).collect();
         mesh
     }
 }
 
 fn corners(vertices: &[Vector3<f64>], t: &[u32; 3]) -> Triangle<f64> {
-    Triangle::new(
-        vertices[t[0] as usize],
-        vertices[t[1] as usize],
-        vertices[t[2] as usize],
-    )
+    Triangle::new(vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize])
 }
 
 /// A mesh converted into backend `T`: the vertices rounded to nearest in `T`
@@ -232,16 +223,8 @@ impl<T: Real> World<T> {
             .zip(&vertices)
             .flat_map(|(v, w)| (0..3).map(move |i| (w[i].to_f64() - v[i]).abs()))
             .fold(0.0, f64::max);
-        let slack = if slack > 0.0 {
-            (slack * (1.0 + 4.0 * f64::EPSILON)).next_up()
-        } else {
-            0.0
-        };
-        World {
-            mesh,
-            vertices,
-            slack,
-        }
+        let slack = if slack > 0.0 { (slack * (1.0 + 4.0 * f64::EPSILON)).next_up() } else { 0.0 };
+        World { mesh, vertices, slack }
     }
 
     /// The `f64` mesh this world was made from.

@@ -31,11 +31,7 @@ pub struct ObjData {
 /// vertices, an index of zero or out of range, or a line/point element.
 pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
     let mut data = ObjData::default();
-    let err = |line: usize, message: String| Error::Obj {
-        path: path.to_path_buf(),
-        line,
-        message,
-    };
+    let err = |line: usize, message: String| Error::Obj { path: path.to_path_buf(), line, message };
     for (n, raw) in text.lines().enumerate() {
         let line = n + 1;
         let content = raw.split('#').next().unwrap_or("");
@@ -49,22 +45,14 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
                 if !(3..=4).contains(&coords.len()) {
                     return Err(err(
                         line,
-                        format!(
-                            "vertex needs 3 coordinates (optionally a weight), found {}",
-                            coords.len()
-                        ),
+                        format!("vertex needs 3 coordinates (optionally a weight), found {}", coords.len()),
                     ));
                 }
                 let mut v = [0.0; 3];
                 for (slot, word) in v.iter_mut().zip(&coords) {
-                    *slot = word
-                        .parse::<f64>()
-                        .map_err(|_| err(line, format!("`{word}` is not a number")))?;
+                    *slot = word.parse::<f64>().map_err(|_| err(line, format!("`{word}` is not a number")))?;
                     if !slot.is_finite() {
-                        return Err(err(
-                            line,
-                            format!("vertex coordinate `{word}` is not finite"),
-                        ));
+                        return Err(err(line, format!("vertex coordinate `{word}` is not finite")));
                     }
                 }
                 data.vertices.push(v);
@@ -72,30 +60,22 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
             "f" => {
                 let mut corners = Vec::with_capacity(4);
                 for word in words {
-                    corners
-                        .push(resolve_index(word, data.vertices.len()).map_err(|m| err(line, m))?);
+                    corners.push(resolve_index(word, data.vertices.len()).map_err(|m| err(line, m))?);
                 }
                 if corners.len() < 3 {
-                    return Err(err(
-                        line,
-                        format!("face needs at least 3 vertices, found {}", corners.len()),
-                    ));
+                    return Err(err(line, format!("face needs at least 3 vertices, found {}", corners.len())));
                 }
                 for k in 1..corners.len() - 1 {
-                    data.triangles
-                        .push([corners[0], corners[k], corners[k + 1]]);
+                    data.triangles.push([corners[0], corners[k], corners[k + 1]]);
                     data.lines.push(line);
                 }
             }
             "l" | "p" => {
-                return Err(err(
-                    line,
-                    format!("`{keyword}` elements (lines, points) are not collision geometry"),
-                ));
+                return Err(err(line, format!("`{keyword}` elements (lines, points) are not collision geometry")));
             }
-            "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "cstype" | "deg"
-            | "curv" | "surf" | "parm" | "end" | "lod" | "bevel" | "c_interp" | "d_interp"
-            | "shadow_obj" | "trace_obj" | "maplib" | "usemap" | "mg" => {}
+            "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "cstype" | "deg" | "curv" | "surf"
+            | "parm" | "end" | "lod" | "bevel" | "c_interp" | "d_interp" | "shadow_obj" | "trace_obj" | "maplib"
+            | "usemap" | "mg" => {}
             other => return Err(err(line, format!("unknown statement `{other}`"))),
         }
     }
@@ -106,18 +86,14 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
 /// vertex index among the `count` vertices read so far.
 fn resolve_index(word: &str, count: usize) -> Result<u32, String> {
     let first = word.split('/').next().unwrap_or("");
-    let i: i64 = first
-        .parse()
-        .map_err(|_| format!("`{word}` is not a vertex index"))?;
+    let i: i64 = first.parse().map_err(|_| format!("`{word}` is not a vertex index"))?;
     let resolved = match i {
         0 => return Err("vertex index 0 is invalid (OBJ indices start at 1)".to_string()),
         i if i > 0 => i - 1,
         i => count as i64 + i,
     };
     if resolved < 0 || resolved >= count as i64 {
-        return Err(format!(
-            "vertex index {i} is out of range ({count} vertices defined so far)"
-        ));
+        return Err(format!("vertex index {i} is out of range ({count} vertices defined so far)"));
     }
     u32::try_from(resolved).map_err(|_| format!("vertex index {i} is too large"))
 }

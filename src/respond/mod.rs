@@ -1,0 +1,262 @@
+//! Collision response: where the body ends up this frame.
+//!
+//! One entry point, [`move_body`], runs any of three responses over any
+//! detection variant and any [`Real`] backend:
+//!
+//! * [`Response::Fauerby`]: Fauerby's recursive `collideWithWorld` (the
+//!   paper's Table I), faithful, defects included ([`fauerby`]).
+//! * [`Response::Linahan`]: Linahan's iterative `sphere_sweep` (Table II),
+//!   faithful ([`linahan`]).
+//! * [`Response::Robust`]: our successor ([`robust`]).
+//!
+//! Defaults follow the papers: Fauerby's and Linahan's responses run on
+//! Fauerby's detection, the robust response on the robust detection; any
+//! combination can be chosen with [`MoveOptions::detection`].
+
+pub mod fauerby;
+pub mod linahan;
+pub mod robust;
+
+pub use fauerby::FauerbyOptions;
+pub use linahan::LinahanOptions;
+pub use robust::RobustOptions;
+
+use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, check_finite};
+use crate::geom::{Ellipsoid, Vec3};
+use crate::world::World;
+use crate::{Error, Real};
+
+/// Which collision response to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "cli", serde(rename_all = "lowercase"))]
+pub enum Response {
+    /// Fauerby's recursive response (Table I).
+    Fauerby,
+    /// Linahan's iterative response (Table II).
+    Linahan,
+    /// The robust response of this crate.
+    Robust,
+}
+
+impl Response {
+    /// All three, in the order reports list them.
+    pub const ALL: [Response; 3] = [Response::Fauerby, Response::Linahan, Response::Robust];
+
+    /// The detection the response's paper used: Fauerby's for Fauerby and
+    /// Linahan (who kept it unchanged), the robust one for Robust.
+    #[must_use]
+    pub fn default_detection(self) -> Detection {
+        match self {
+            Response::Fauerby | Response::Linahan => Detection::Fauerby,
+            Response::Robust => Detection::Robust,
+        }
+    }
+
+    /// The lowercase name used on the command line and in reports.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Response::Fauerby => "fauerby",
+            Response::Linahan => "linahan",
+            Response::Robust => "robust",
+        }
+    }
+}
+
+/// Everything that tunes a move. Distances are in eSpace units (the body's
+/// radii are 1) unless a field says otherwise.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+pub struct MoveOptions {
+    /// The response to run.
+    pub response: Response,
+    /// The detection to run it on; `None` for the response's own
+    /// ([`Response::default_detection`]).
+    pub detection: Option<Detection>,
+    /// Options of the robust detection.
+    pub detect: DetectOptions,
+    /// Fauerby's constants.
+    pub fauerby: FauerbyOptions,
+    /// Linahan's constants.
+    pub linahan: LinahanOptions,
+    /// The robust response's tolerances.
+    pub robust: RobustOptions,
+}
+
+impl MoveOptions {
+    /// Default options for `response`.
+    #[must_use]
+    pub fn new(response: Response) -> Self {
+        MoveOptions {
+            response,
+            detection: None,
+            detect: DetectOptions::default(),
+            fauerby: FauerbyOptions::default(),
+            linahan: LinahanOptions::default(),
+            robust: RobustOptions::default(),
+        }
+    }
+
+    /// The detection that will run.
+    #[must_use]
+    pub fn effective_detection(&self) -> Detection {
+        self.detection.unwrap_or_else(|| self.response.default_detection())
+    }
+}
+
+/// Why a pass of the response stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "cli", serde(rename_all = "snake_case"))]
+pub enum StopReason {
+    /// The last sweep hit nothing: the remaining motion was completed.
+    Free,
+    /// The remaining motion became too short to continue (Fauerby's
+    /// `veryCloseDistance` test).
+    Exhausted,
+    /// Fauerby's recursion depth cap was reached.
+    DepthCap,
+    /// Linahan's third plane: motion stops at the near point.
+    ThirdPlane,
+    /// The robust solve left no admissible motion (a corner or dead end).
+    Blocked,
+    /// The robust response used its whole sweep budget.
+    IterationCap,
+    /// Nothing to do: zero velocity.
+    ZeroVelocity,
+}
+
+/// One contact met during a move.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Contact<T: Real> {
+    /// The detection's hit, in the eSpace coordinates the response used.
+    pub hit: Hit<T>,
+    /// The sliding-plane normal the response used (eSpace, unit or NaN for
+    /// the faithful responses where their arithmetic produces NaN).
+    pub plane_normal: Vec3<T>,
+}
+
+/// What happened during a move.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trace<T: Real> {
+    /// Collision checks run (calls to the world query), all passes together.
+    pub iterations: u32,
+    /// The contacts met, in order.
+    pub contacts: Vec<Contact<T>>,
+    /// Why the last pass stopped.
+    pub stop: StopReason,
+    /// How far (eSpace) the robust response pushed the body out of geometry
+    /// it started embedded in (zero when it did not).
+    pub depenetration: f64,
+}
+
+/// The outcome of [`move_body`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Move<T: Real> {
+    /// Where the body's centre ends up (world space).
+    pub position: Vec3<T>,
+    /// How it got there.
+    pub trace: Trace<T>,
+}
+
+/// One frame's shared state: the candidate triangles in eSpace and the
+/// trace being written.
+pub(crate) struct Frame<'w, T: Real> {
+    pub world: &'w World<T>,
+    pub body: &'w Ellipsoid<T>,
+    pub detection: Detection,
+    pub detect: &'w DetectOptions,
+    pub hood: Neighbourhood<T>,
+    pub trace: Trace<T>,
+}
+
+impl<T: Real> Frame<'_, T> {
+    /// Runs the collision query: the earliest hit of the unit sphere at
+    /// `base` moving by `vel`, counted as one iteration.
+    pub fn check_collision(&mut self, base: &Vec3<T>, vel: &Vec3<T>) -> Option<Hit<T>> {
+        self.trace.iterations += 1;
+        self.hood.earliest_hit(self.detection, base, vel, self.detect)
+    }
+
+    /// Records a contact.
+    pub fn record(&mut self, hit: Hit<T>, plane_normal: Vec3<T>) {
+        self.trace.contacts.push(Contact { hit, plane_normal });
+    }
+}
+
+/// Moves `body` from `position` by `velocity` (world space, this frame's
+/// displacement) through `world`, then, if given, by `gravity` in a second
+/// pass (Fauerby's scheme, used by all three responses).
+///
+/// Zero velocity and gravity are valid (a body at rest): the position is
+/// returned unchanged except that the robust response still pushes a body
+/// that starts embedded out of the geometry.
+///
+/// # Errors
+/// [`Error::NonFinite`] if the position, velocity or gravity has a NaN or
+/// infinite coordinate. Never panics; the faithful responses may return a
+/// NaN position where their arithmetic does (that is what the lab counts).
+pub fn move_body<T: Real>(
+    world: &World<T>,
+    body: &Ellipsoid<T>,
+    position: &Vec3<T>,
+    velocity: &Vec3<T>,
+    gravity: Option<&Vec3<T>>,
+    options: &MoveOptions,
+) -> Result<Move<T>, Error> {
+    check_finite("position", position)?;
+    check_finite("velocity", velocity)?;
+    let zero = Vec3::zeros();
+    let gravity = gravity.unwrap_or(&zero);
+    check_finite("gravity", gravity)?;
+    let origin = match options.response {
+        Response::Robust => position.clone(),
+        Response::Fauerby | Response::Linahan => Vec3::zeros(),
+    };
+    let (min, max) = reach_box(body, position, &[velocity, gravity]);
+    let mut scratch = Vec::new();
+    let hood = Neighbourhood::gather(world, body, origin.clone(), &min, &max, &mut scratch);
+    let trace = Trace { iterations: 0, contacts: Vec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
+    let mut frame =
+        Frame { world, body, detection: options.effective_detection(), detect: &options.detect, hood, trace };
+    let start = body.to_espace(&(position - &origin));
+    let mut p = start.clone();
+    if options.response == Response::Robust {
+        p = robust::depenetrate(&mut frame, p, &options.robust);
+    }
+    for vel in [velocity, gravity] {
+        if vel.iter().all(|x| *x == T::zero()) {
+            continue;
+        }
+        let vel_e = body.to_espace(vel);
+        p = match options.response {
+            Response::Fauerby => fauerby::collide_and_slide(&mut frame, p, vel_e, &options.fauerby),
+            Response::Linahan => linahan::sphere_sweep(&mut frame, p, vel_e, &options.linahan),
+            Response::Robust => robust::slide(&mut frame, p, vel_e, &options.robust),
+        };
+    }
+    let position = if p == start { position.clone() } else { body.from_espace(&p) + &origin };
+    Ok(Move { position, trace: frame.trace })
+}
+
+/// The world-space box that holds the body anywhere it can reach from
+/// `position` by the given displacements one after the other, grown by half
+/// a radius for paddings and push-outs.
+fn reach_box<T: Real>(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
+    let mut min = position.clone();
+    let mut max = position.clone();
+    let mut corners = vec![position.clone()];
+    for m in moves {
+        let more: Vec<Vec3<T>> = corners.iter().map(|c| c + *m).collect();
+        corners.extend(more);
+    }
+    for c in &corners {
+        for i in 0..3 {
+            min[i] = min[i].clone().min(c[i].clone());
+            max[i] = max[i].clone().max(c[i].clone());
+        }
+    }
+    let grow = body.radii() * T::c(1.5);
+    (min - &grow, max + grow)
+}
