@@ -3,7 +3,7 @@
 use super::Real;
 
 macro_rules! impl_real_for_float {
-    ($t:ty, $name:literal) => {
+    ($t:ty, $name:literal, $to:ident) => {
         impl Real for $t {
             #[inline]
             fn bits() -> u32 {
@@ -44,9 +44,13 @@ macro_rules! impl_real_for_float {
             fn to_rug(&self) -> rug::Float {
                 rug::Float::with_val(<$t>::MANTISSA_DIGITS, *self)
             }
+            #[cfg(feature = "mpfr")]
+            fn from_rug(x: &rug::Float) -> Self {
+                x.$to()
+            }
         }
     };
 }
 
-impl_real_for_float!(f32, "f32");
-impl_real_for_float!(f64, "f64");
+impl_real_for_float!(f32, "f32", to_f32);
+impl_real_for_float!(f64, "f64", to_f64);

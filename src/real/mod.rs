@@ -87,6 +87,11 @@ pub trait Real:
     #[cfg(feature = "mpfr")]
     fn to_rug(&self) -> rug::Float;
 
+    /// An MPFR value rounded to nearest in this backend (exact when
+    /// representable).
+    #[cfg(feature = "mpfr")]
+    fn from_rug(x: &rug::Float) -> Self;
+
     /// Unit roundoff `u = 2^-bits`: the largest relative error of one
     /// correctly rounded operation in the normal range.
     #[must_use]

@@ -188,4 +188,7 @@ impl<const BITS: u32> Real for Mpfr<BITS> {
     fn to_rug(&self) -> Float {
         self.0.clone()
     }
+    fn from_rug(x: &Float) -> Self {
+        Self::from_rug(x)
+    }
 }
