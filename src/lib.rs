@@ -18,6 +18,8 @@
 pub mod detect;
 pub mod error;
 pub mod geom;
+#[cfg(feature = "lab")]
+pub mod lab;
 pub mod real;
 pub mod respond;
 pub mod world;

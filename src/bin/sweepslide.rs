@@ -1,1 +1,256 @@
-fn main() {}
+//! The `sweepslide` command line: run the lab, list scenes, make reports.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+use sweepslide::Error;
+use sweepslide::detect::Detection;
+use sweepslide::lab::scenes::{BUILTIN, build};
+use sweepslide::lab::{Precision, RunConfig, RunOutput, Scene, run};
+use sweepslide::respond::Response;
+
+#[derive(Parser)]
+#[command(
+    name = "sweepslide",
+    version,
+    about = "Collide-and-slide lab: Fauerby, Linahan and a robust response in any precision"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run one scene with one response in one precision and print its metrics.
+    Run(RunArgs),
+    /// List the built-in scenes.
+    Scenes,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum ResponseArg {
+    Fauerby,
+    Linahan,
+    Robust,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum DetectionArg {
+    Fauerby,
+    Robust,
+}
+
+#[derive(clap::Args)]
+struct RunArgs {
+    /// Built-in scene, `name` or `name:parameter` (see `sweepslide scenes`).
+    #[arg(long, conflicts_with = "mesh", required_unless_present = "mesh")]
+    scene: Option<String>,
+    /// A Wavefront OBJ file to use as the scene.
+    #[arg(long)]
+    mesh: Option<PathBuf>,
+    /// Collision response.
+    #[arg(long, value_enum, default_value = "robust")]
+    response: ResponseArg,
+    /// Detection variant (default: the response's own).
+    #[arg(long, value_enum)]
+    detection: Option<DetectionArg>,
+    /// f32, f64 or mpfr<BITS> (for example mpfr53).
+    #[arg(long, default_value = "f64", value_parser = parse_precision)]
+    precision: Precision,
+    /// Number of frames (default: the scene's).
+    #[arg(long)]
+    frames: Option<usize>,
+    /// Start position X,Y,Z.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
+    start: Option<[f64; 3]>,
+    /// Pushing displacement per frame X,Y,Z.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
+    velocity: Option<[f64; 3]>,
+    /// Gravity displacement per frame X,Y,Z (a second pass each frame).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
+    gravity: Option<[f64; 3]>,
+    /// Sphere radius.
+    #[arg(long, conflicts_with = "radii", value_parser = parse_positive)]
+    radius: Option<f64>,
+    /// Ellipsoid radii X,Y,Z.
+    #[arg(long, value_parser = parse_vec3)]
+    radii: Option<[f64; 3]>,
+    /// Move the whole scene (geometry and start) by X,Y,Z.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
+    offset: Option<[f64; 3]>,
+    /// Seed of seeded scenes and random-walk motion.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Print one JSON object instead of a summary.
+    #[arg(long)]
+    json: bool,
+    /// Write per-frame positions and metrics to this CSV file.
+    #[arg(long)]
+    trace: Option<PathBuf>,
+}
+
+fn parse_precision(s: &str) -> Result<Precision, String> {
+    Precision::parse(s).map_err(|e| e.to_string())
+}
+
+fn parse_number(s: &str) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a number"))?;
+    if v.is_finite() { Ok(v) } else { Err(format!("`{s}` is not finite")) }
+}
+
+fn parse_positive(s: &str) -> Result<f64, String> {
+    let v = parse_number(s)?;
+    if v > 0.0 { Ok(v) } else { Err(format!("`{s}` must be positive")) }
+}
+
+fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("`{s}` must be three numbers X,Y,Z"));
+    }
+    Ok([parse_number(parts[0])?, parse_number(parts[1])?, parse_number(parts[2])?])
+}
+
+/// A failure and the exit code it maps to: 2 for bad input, 1 otherwise.
+struct Failure(Error);
+
+impl Failure {
+    fn code(&self) -> u8 {
+        match self.0 {
+            Error::Io { .. } => 1,
+            _ => 2,
+        }
+    }
+}
+
+impl From<Error> for Failure {
+    fn from(e: Error) -> Self {
+        Failure(e)
+    }
+}
+
+fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
+    let (mut scene, built_in) = match (&args.scene, &args.mesh) {
+        (Some(name), _) => (build(name, args.seed)?, true),
+        (None, Some(path)) => {
+            let s = Scene::from_obj(path)?;
+            if !s.mesh.skipped().is_empty() {
+                eprintln!("warning: {} face(s) of {} skipped:", s.mesh.skipped().len(), path.display());
+                for e in s.mesh.skipped().iter().take(5) {
+                    eprintln!("  {e}");
+                }
+            }
+            (s, false)
+        }
+        (None, None) => unreachable!("clap requires --scene or --mesh"),
+    };
+    if let Some(f) = args.frames {
+        scene.frames = f;
+    }
+    if let Some(v) = args.start {
+        scene.start = v;
+    }
+    if let Some(v) = args.velocity {
+        scene.velocity = v;
+        scene.ideal = None;
+    }
+    if let Some(v) = args.gravity {
+        scene.gravity = v;
+    }
+    if let Some(r) = args.radius {
+        scene.radii = [r; 3];
+    }
+    if let Some(r) = args.radii {
+        scene.radii = r;
+    }
+    if let Some(o) = args.offset {
+        scene = scene.offset(o, built_in)?;
+    }
+    Ok(scene)
+}
+
+fn write_trace(path: &PathBuf, out: &RunOutput) -> Result<(), Error> {
+    let mut csv = String::from("frame,x,y,z,penetration,iterations,stop,flip\n");
+    for f in &out.frames {
+        let pen = f.penetration.map_or(String::new(), |p| format!("{p:e}"));
+        let stop = format!("{:?}", f.stop);
+        csv += &format!(
+            "{},{:e},{:e},{:e},{},{},{},{}\n",
+            f.frame, f.position[0], f.position[1], f.position[2], pen, f.iterations, stop, f.flip
+        );
+    }
+    std::fs::write(path, csv).map_err(|e| Error::Io { path: path.clone(), message: e.to_string() })
+}
+
+fn run_command(args: &RunArgs) -> Result<(), Failure> {
+    let scene = scene_of(args)?;
+    let cfg = RunConfig {
+        scene: Arc::new(scene),
+        response: match args.response {
+            ResponseArg::Fauerby => Response::Fauerby,
+            ResponseArg::Linahan => Response::Linahan,
+            ResponseArg::Robust => Response::Robust,
+        },
+        detection: args.detection.map(|d| match d {
+            DetectionArg::Fauerby => Detection::Fauerby,
+            DetectionArg::Robust => Detection::Robust,
+        }),
+        precision: args.precision,
+        seed: args.seed,
+    };
+    let out = run(&cfg)?;
+    if let Some(path) = &args.trace {
+        write_trace(path, &out)?;
+    }
+    let r = &out.result;
+    if args.json {
+        println!("{}", serde_json::to_string(r).expect("metrics serialise"));
+    } else {
+        println!(
+            "scene {} | response {} on {} detection | {} | {} frames (seed {})",
+            r.scene, r.response, r.detection, r.precision, r.frames, r.seed
+        );
+        println!(
+            "  penetration   max {:.3e}, {} frame(s) inside{}",
+            r.max_penetration,
+            r.penetrating_frames,
+            r.first_penetrating_frame.map_or(String::new(), |f| format!(", first at frame {f}"))
+        );
+        println!("  jitter        {:.3e}", r.jitter);
+        println!(
+            "  iterations    max {}, mean {:.2}, {} frame(s) at the cap",
+            r.max_iterations, r.mean_iterations, r.capped_frames
+        );
+        println!("  NaN frames    {}", r.nan_frames);
+        println!("  decision flips vs mpfr256: {}", r.decision_flips);
+        if let Some(s) = r.snag {
+            println!("  snag ratio    {s:.6} (1 = ideal slide)");
+        }
+        println!("  final position {:?}", r.final_position);
+        println!("  time per move  {:.0} ns (includes no metric)", r.ns_per_move);
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Run(args) => run_command(args),
+        Command::Scenes => {
+            for (name, param, description) in BUILTIN {
+                let param = if param.is_empty() { String::new() } else { format!(" [:{param}]") };
+                println!("{name}{param}\n    {description}");
+            }
+            Ok(())
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("error: {}", f.0);
+            ExitCode::from(f.code())
+        }
+    }
+}

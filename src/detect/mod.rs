@@ -18,8 +18,8 @@ use crate::{Error, Real};
 
 /// Which sphere-vs-triangle test to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "cli", serde(rename_all = "lowercase"))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", serde(rename_all = "lowercase"))]
 pub enum Detection {
     /// Fauerby's test, faithful to his code (one-sided, textbook roots).
     Fauerby,
@@ -56,7 +56,7 @@ impl Detection {
 
 /// Options of the robust detection (Fauerby's has none).
 #[derive(Clone, Debug, PartialEq)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
 pub struct DetectOptions {
     /// Treat both sides of every triangle as solid (default `true`). When
     /// `false`, a triangle whose plane has the sphere centre behind it is

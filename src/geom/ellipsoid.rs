@@ -33,6 +33,19 @@ impl<T: Real> Ellipsoid<T> {
         Ok(Ellipsoid { radii: Vector3::new(T::from_f64(radii[0]), T::from_f64(radii[1]), T::from_f64(radii[2])) })
     }
 
+    /// An ellipsoid with radii already in backend `T`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidRadius`] when a radius is not positive and finite.
+    pub fn from_radii(radii: Vec3<T>) -> Result<Self, Error> {
+        for (axis, r) in ['x', 'y', 'z'].into_iter().zip(radii.iter()) {
+            if !(*r > T::zero() && r.is_finite()) {
+                return Err(Error::InvalidRadius { axis, value: r.to_f64() });
+            }
+        }
+        Ok(Ellipsoid { radii })
+    }
+
     /// A sphere of radius `r`.
     ///
     /// # Errors

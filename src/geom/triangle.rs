@@ -18,7 +18,7 @@ pub struct Triangle<T: Real> {
 
 /// The part of a triangle a contact lies on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
 pub enum Feature {
     /// The interior of the face.
     Face,

@@ -14,7 +14,7 @@ use crate::geom::{Plane, Vec3, norm};
 
 /// Fauerby's constants.
 #[derive(Clone, Debug, PartialEq)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
 pub struct FauerbyOptions {
     /// World units per metre (his `unitsPerMeter`); `veryCloseDistance` is
     /// `0.005 * units_per_meter / 100` in eSpace units. Default 1 (metres),

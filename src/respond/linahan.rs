@@ -14,7 +14,7 @@ use crate::geom::{Plane, Vec3, cross, dot, norm};
 
 /// Linahan's constant.
 #[derive(Clone, Debug, PartialEq)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
 pub struct LinahanOptions {
     /// `very_close_dist` (eSpace units): the near-point shortening and the
     /// long-radius excess. The paper gives no value; default `5e-5`, the

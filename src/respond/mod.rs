@@ -28,8 +28,8 @@ use crate::{Error, Real};
 
 /// Which collision response to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "cli", serde(rename_all = "lowercase"))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", serde(rename_all = "lowercase"))]
 pub enum Response {
     /// Fauerby's recursive response (Table I).
     Fauerby,
@@ -67,7 +67,7 @@ impl Response {
 /// Everything that tunes a move. Distances are in eSpace units (the body's
 /// radii are 1) unless a field says otherwise.
 #[derive(Clone, Debug, PartialEq)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
 pub struct MoveOptions {
     /// The response to run.
     pub response: Response,
@@ -107,8 +107,8 @@ impl MoveOptions {
 
 /// Why a pass of the response stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "cli", serde(rename_all = "snake_case"))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", serde(rename_all = "snake_case"))]
 pub enum StopReason {
     /// The last sweep hit nothing: the remaining motion was completed.
     Free,

@@ -50,7 +50,7 @@ use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot
 /// The robust response's tolerances. Distances are eSpace units (radius 1);
 /// `*_ulps` fields are multiples of the backend's unit roundoff `u`.
 #[derive(Clone, Debug, PartialEq)]
-#[cfg_attr(feature = "cli", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
 pub struct RobustOptions {
     /// Sweeps per pass at most (default 8).
     pub max_iterations: u32,

@@ -227,6 +227,16 @@ impl<T: Real> World<T> {
         World { mesh, vertices, slack }
     }
 
+    /// The same world in another backend `U`, converted from this world's
+    /// stored values (through MPFR, exactly when `U` has at least as many
+    /// bits), so `U` sees the very numbers `T` computed with.
+    #[cfg(feature = "mpfr")]
+    #[must_use]
+    pub fn converted<U: Real>(&self) -> World<U> {
+        let vertices = self.vertices.iter().map(|v| v.map(|x| U::from_rug(&x.to_rug()))).collect();
+        World { mesh: self.mesh.clone(), vertices, slack: self.slack }
+    }
+
     /// The `f64` mesh this world was made from.
     #[must_use]
     pub fn mesh(&self) -> &TriangleMesh {

@@ -1,0 +1,161 @@
+//! The lab's measurements (ALGORITHMS.md section 7), computed independently
+//! of the code under test.
+//!
+//! Distances are computed with `rug` directly at [`EXACT_BITS`] bits from
+//! the exact binary values the run stored (vertices, position, radii), with
+//! a formulation different from the detection's: the distance to the plane
+//! when the projection falls inside the triangle (three orientation signs),
+//! else the smallest distance to the three segments (clamped projection).
+//! Both branches are continuous across edges and vertices, so points near
+//! them are not misjudged. Every operation rounds at 512 bits, so each
+//! reported value (an `f64`) is the exact one up to a relative error of
+//! about `2^-500`, far below the last bit of the `f64` it is reported in.
+
+use crate::Real;
+use crate::geom::Vec3;
+use crate::world::World;
+use rug::Float;
+
+/// Precision of the exact computations.
+pub const EXACT_BITS: u32 = 512;
+
+type V = [Float; 3];
+
+fn f(x: &Float) -> Float {
+    Float::with_val(EXACT_BITS, x)
+}
+
+fn sub(a: &V, b: &V) -> V {
+    [0, 1, 2].map(|i| Float::with_val(EXACT_BITS, &a[i] - &b[i]))
+}
+
+fn dot(a: &V, b: &V) -> Float {
+    let mut s = Float::with_val(EXACT_BITS, &a[0] * &b[0]);
+    s += &a[1] * &b[1];
+    s += &a[2] * &b[2];
+    s
+}
+
+fn cross(a: &V, b: &V) -> V {
+    [
+        Float::with_val(EXACT_BITS, &a[1] * &b[2] - &a[2] * &b[1]),
+        Float::with_val(EXACT_BITS, &a[2] * &b[0] - &a[0] * &b[2]),
+        Float::with_val(EXACT_BITS, &a[0] * &b[1] - &a[1] * &b[0]),
+    ]
+}
+
+/// Squared distance from `p` to the segment `[a, b]`.
+fn segment_distance_sq(p: &V, a: &V, b: &V) -> Float {
+    let ab = sub(b, a);
+    let ap = sub(p, a);
+    let len2 = dot(&ab, &ab);
+    let mut t = dot(&ap, &ab);
+    if len2.is_zero() || t.is_sign_negative() {
+        t = Float::new(EXACT_BITS);
+    } else {
+        t /= &len2;
+        if t > 1 {
+            t = Float::with_val(EXACT_BITS, 1);
+        }
+    }
+    let d = [0, 1, 2].map(|i| Float::with_val(EXACT_BITS, &ap[i] - &t * &ab[i]));
+    dot(&d, &d)
+}
+
+/// Squared distance from `p` to the triangle `a b c` (all exact at
+/// [`EXACT_BITS`]).
+#[must_use]
+pub fn triangle_distance_sq(p: &V, a: &V, b: &V, c: &V) -> Float {
+    let n = cross(&sub(b, a), &sub(c, a));
+    let n2 = dot(&n, &n);
+    let inside = !n2.is_zero()
+        && [(a, b), (b, c), (c, a)].iter().all(|(u, v)| !dot(&n, &cross(&sub(v, u), &sub(p, u))).is_sign_negative());
+    if inside {
+        let h = dot(&n, &sub(p, a));
+        return Float::with_val(EXACT_BITS, &h * &h) / n2;
+    }
+    let d = segment_distance_sq(p, a, b).min(&segment_distance_sq(p, b, c));
+    d.min(&segment_distance_sq(p, c, a))
+}
+
+fn exact<T: Real>(v: &Vec3<T>) -> V {
+    [0, 1, 2].map(|i| f(&v[i].to_rug()))
+}
+
+/// The exact penetration of a body with `radii` centred at `position` into
+/// the triangles of `world`: `1 - d` with `d` the exact eSpace distance from
+/// the centre to the mesh (coordinates divided by the radii at 512 bits),
+/// multiplied by the radius for a sphere (so it is in world units) and left
+/// in eSpace units for an ellipsoid. Positive means inside the geometry;
+/// `None` when no triangle is within reach (clearly not penetrating) or the
+/// position is not finite.
+#[must_use]
+pub fn penetration<T: Real>(world: &World<T>, radii: &Vec3<T>, position: &Vec3<T>) -> Option<f64> {
+    if !position.iter().all(Real::is_finite) {
+        return None;
+    }
+    let grow = radii * T::c(1.0 + 1e-6);
+    let mut candidates = Vec::new();
+    world.candidates(&(position - &grow), &(position + &grow), &mut candidates);
+    if candidates.is_empty() {
+        return None;
+    }
+    let r = exact(radii);
+    let to_e = |v: V| [0, 1, 2].map(|i| Float::with_val(EXACT_BITS, &v[i] / &r[i]));
+    let p = to_e(exact(position));
+    let mut best: Option<Float> = None;
+    for t in candidates {
+        let tri = world.triangle(t);
+        let [a, b, c] = [&tri.a, &tri.b, &tri.c].map(|v| to_e(exact(v)));
+        let d2 = triangle_distance_sq(&p, &a, &b, &c);
+        if best.as_ref().is_none_or(|b| d2 < *b) {
+            best = Some(d2);
+        }
+    }
+    let d = best?.sqrt();
+    let pen = Float::with_val(EXACT_BITS, 1 - d);
+    let sphere = r[0] == r[1] && r[1] == r[2];
+    Some(if sphere { (pen * &r[0]).to_f64() } else { pen.to_f64() })
+}
+
+/// Jitter over the last `K = max(1, n / 4)` displacements `d_k` of the
+/// trajectory `positions` (frame 0 first): `(sum |d_k| - |sum d_k|) / (K
+/// speed)`. Zero for straight motion or rest, positive when the body
+/// wiggles. Displacements are taken exactly (512 bits) so that rounding of
+/// far-from-origin coordinates does not show up as jitter.
+#[must_use]
+pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
+    let n = positions.len().saturating_sub(1);
+    if n == 0 || !(speed > 0.0) || positions.iter().any(|p| !p.iter().all(Real::is_finite)) {
+        return 0.0;
+    }
+    let k = (n / 4).max(1);
+    let tail = &positions[positions.len() - 1 - k..];
+    let exact_tail: Vec<V> = tail.iter().map(exact).collect();
+    let norm = |d: &V| dot(d, d).sqrt();
+    let mut path = Float::new(EXACT_BITS);
+    for w in exact_tail.windows(2) {
+        path += norm(&sub(&w[1], &w[0]));
+    }
+    let net = norm(&sub(&exact_tail[k], &exact_tail[0]));
+    let j = Float::with_val(EXACT_BITS, path - net) / (k as f64 * speed);
+    j.to_f64()
+}
+
+/// The snag ratio: displacement achieved along the ideal slide direction
+/// divided by the ideal displacement (`frames * |ideal|`); 1 means no snag.
+#[must_use]
+pub fn snag_ratio<T: Real>(start: &Vec3<T>, end: &Vec3<T>, ideal_per_frame: [f64; 3], frames: usize) -> Option<f64> {
+    let ideal = exact(&crate::geom::vec3::<crate::Mpfr<EXACT_BITS>>(
+        ideal_per_frame[0],
+        ideal_per_frame[1],
+        ideal_per_frame[2],
+    ));
+    let len = dot(&ideal, &ideal).sqrt();
+    if len.is_zero() || frames == 0 || !end.iter().all(Real::is_finite) {
+        return None;
+    }
+    let moved = sub(&exact(end), &exact(start));
+    let along = dot(&moved, &ideal) / len.clone();
+    Some((along / (len * frames as f64)).to_f64())
+}

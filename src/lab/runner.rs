@@ -1,0 +1,308 @@
+//! Runs a scene with one response in one precision and measures it.
+
+use super::metrics::{jitter, penetration, snag_ratio};
+use super::scenes::{Scene, Steering};
+use crate::detect::Detection;
+use crate::geom::{Ellipsoid, Feature, Vec3, vec3};
+use crate::real::{MpfrDyn, with_precision};
+use crate::respond::{Move, MoveOptions, Response, StopReason, move_body};
+use crate::world::World;
+use crate::{Error, Mpfr, Real};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Precision of the reference run that decision flips are counted against.
+pub const REFERENCE_BITS: u32 = 256;
+
+/// A floating-point backend chosen at run time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Precision {
+    /// IEEE single precision.
+    F32,
+    /// IEEE double precision.
+    F64,
+    /// MPFR with this many bits of significand (2 or more).
+    Mpfr(u32),
+}
+
+impl Precision {
+    /// Parses `f32`, `f64`, `mpfrBITS` or `mpfr<BITS>`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for anything else, and
+    /// [`Error::PrecisionOutOfRange`] for a precision MPFR cannot use.
+    pub fn parse(s: &str) -> Result<Self, Error> {
+        let lower = s.trim().to_ascii_lowercase();
+        match lower.as_str() {
+            "f32" => return Ok(Precision::F32),
+            "f64" => return Ok(Precision::F64),
+            _ => {}
+        }
+        let digits = lower.strip_prefix("mpfr").map(|d| d.trim_start_matches('<').trim_end_matches('>'));
+        let bits: u32 = digits.and_then(|d| d.parse().ok()).ok_or_else(|| Error::InvalidArgument {
+            what: format!("precision `{s}`"),
+            message: "expected f32, f64 or mpfr<BITS> (for example mpfr53)".into(),
+        })?;
+        with_precision(bits, || ())?;
+        Ok(Precision::Mpfr(bits))
+    }
+
+    /// Significand bits.
+    #[must_use]
+    pub fn bits(self) -> u32 {
+        match self {
+            Precision::F32 => 24,
+            Precision::F64 => 53,
+            Precision::Mpfr(b) => b,
+        }
+    }
+}
+
+impl fmt::Display for Precision {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Precision::F32 => write!(f, "f32"),
+            Precision::F64 => write!(f, "f64"),
+            Precision::Mpfr(b) => write!(f, "mpfr{b}"),
+        }
+    }
+}
+
+/// One run to make.
+#[derive(Clone, Debug)]
+pub struct RunConfig {
+    /// The scene (its defaults, possibly overridden, drive the run).
+    pub scene: Arc<Scene>,
+    /// The response.
+    pub response: Response,
+    /// The detection (`None`: the response's own).
+    pub detection: Option<Detection>,
+    /// The backend.
+    pub precision: Precision,
+    /// Seed of the motion program.
+    pub seed: u64,
+}
+
+/// The metrics of one run. Field names are the lab's public contract
+/// (`sweepslide run --json`, `results.json`): fields are added, never
+/// renamed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunResult {
+    /// Scene name.
+    pub scene: String,
+    /// Response name.
+    pub response: String,
+    /// Detection name.
+    pub detection: String,
+    /// Precision name.
+    pub precision: String,
+    /// Seed of the motion program.
+    pub seed: u64,
+    /// Frames run.
+    pub frames: usize,
+    /// Largest exact penetration over the frames (0 if never inside).
+    pub max_penetration: f64,
+    /// Frames that ended with the body inside the geometry.
+    pub penetrating_frames: usize,
+    /// First frame (0-based) that ended inside the geometry.
+    pub first_penetrating_frame: Option<usize>,
+    /// Jitter over the last quarter of the frames.
+    pub jitter: f64,
+    /// Largest number of collision checks in one frame (the freeze metric).
+    pub max_iterations: u32,
+    /// Mean collision checks per frame.
+    pub mean_iterations: f64,
+    /// Frames that stopped at the response's cap (Fauerby's depth cap,
+    /// Linahan's third plane, the robust iteration budget).
+    pub capped_frames: usize,
+    /// Frames whose position was NaN or infinite (the run stops at the
+    /// first; the rest of the frames count too).
+    pub nan_frames: usize,
+    /// Frames whose contact decisions (hit or not, triangle, feature)
+    /// differ from the same frame replayed in `Mpfr<256>` from the same
+    /// start.
+    pub decision_flips: usize,
+    /// Position after the last frame.
+    pub final_position: [f64; 3],
+    /// Snag ratio where the scene has an ideal slide (1 = no snag).
+    pub snag: Option<f64>,
+    /// Mean wall-clock nanoseconds per `move_body` call.
+    pub ns_per_move: f64,
+}
+
+/// Per-frame values, kept for plots and `--trace`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FrameRecord {
+    /// Frame index.
+    pub frame: usize,
+    /// Position after the frame.
+    pub position: [f64; 3],
+    /// Exact penetration after the frame (`None`: nothing within reach).
+    pub penetration: Option<f64>,
+    /// Collision checks this frame.
+    pub iterations: u32,
+    /// Why the frame's last pass stopped.
+    pub stop: StopReason,
+    /// Whether the decisions differed from the `Mpfr<256>` replay.
+    pub flip: bool,
+}
+
+/// A run's metrics and its frames.
+#[derive(Clone, Debug)]
+pub struct RunOutput {
+    /// The metrics.
+    pub result: RunResult,
+    /// One record per frame.
+    pub frames: Vec<FrameRecord>,
+}
+
+/// The contact decisions of a move: triangle and feature of each contact.
+fn decisions<T: Real>(m: &Move<T>) -> Vec<(u32, Feature)> {
+    m.trace.contacts.iter().map(|c| (c.hit.triangle, c.hit.feature)).collect()
+}
+
+fn to_reference<T: Real>(v: &Vec3<T>) -> Vec3<Mpfr<REFERENCE_BITS>> {
+    v.map(|x| Mpfr::from_rug(&x.to_rug()))
+}
+
+fn is_capped(stop: StopReason) -> bool {
+    matches!(stop, StopReason::DepthCap | StopReason::ThirdPlane | StopReason::IterationCap)
+}
+
+/// Runs `cfg` in backend `T`.
+fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
+    let scene = &*cfg.scene;
+    let frames = scene.frames;
+    let world = World::<T>::new(scene.mesh.clone());
+    let reference = world.converted::<Mpfr<REFERENCE_BITS>>();
+    let body = Ellipsoid::<T>::new(scene.radii)?;
+    let ref_body = Ellipsoid::from_radii(to_reference(body.radii()))?;
+    let mut opts = MoveOptions::new(cfg.response);
+    opts.detection = cfg.detection;
+    let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
+    let has_gravity = scene.gravity != [0.0; 3];
+    if scene.velocity == [0.0; 3] && !has_gravity {
+        return Err(Error::ZeroVelocity);
+    }
+    let mut steering = Steering::new(scene, cfg.seed);
+    let start: Vec3<T> = vec3(scene.start[0], scene.start[1], scene.start[2]);
+    let mut p = start.clone();
+    let mut positions = vec![p.clone()];
+    let mut records = Vec::with_capacity(frames);
+    let (mut ns, mut iterations_sum, mut max_iterations) = (0u128, 0u64, 0u32);
+    let (mut penetrating, mut first_pen, mut max_pen) = (0usize, None, 0.0f64);
+    let (mut capped, mut flips, mut nan_frames) = (0usize, 0usize, 0usize);
+    let mut moves = 0usize;
+    for k in 0..frames {
+        let v = steering.next(scene);
+        let vel: Vec3<T> = vec3(v[0], v[1], v[2]);
+        let grav = has_gravity.then_some(&gravity);
+        let clock = Instant::now();
+        let m = move_body(&world, &body, &p, &vel, grav, &opts)?;
+        ns += clock.elapsed().as_nanos();
+        moves += 1;
+        let finite = m.position.iter().all(Real::is_finite);
+        let replay = move_body(
+            &reference,
+            &ref_body,
+            &to_reference(&p),
+            &to_reference(&vel),
+            has_gravity.then(|| to_reference(&gravity)).as_ref(),
+            &opts,
+        )?;
+        let flip = decisions(&m) != decisions(&replay);
+        flips += usize::from(flip);
+        iterations_sum += u64::from(m.trace.iterations);
+        max_iterations = max_iterations.max(m.trace.iterations);
+        capped += usize::from(is_capped(m.trace.stop));
+        let pen = if finite { penetration(&world, body.radii(), &m.position) } else { None };
+        if let Some(d) = pen.filter(|d| *d > 0.0) {
+            penetrating += 1;
+            first_pen.get_or_insert(k);
+            max_pen = max_pen.max(d);
+        }
+        records.push(FrameRecord {
+            frame: k,
+            position: [0, 1, 2].map(|i| m.position[i].to_f64()),
+            penetration: pen,
+            iterations: m.trace.iterations,
+            stop: m.trace.stop,
+            flip,
+        });
+        p = m.position;
+        positions.push(p.clone());
+        if !finite {
+            nan_frames = frames - k;
+            break;
+        }
+    }
+    let speed = {
+        let v = if scene.velocity == [0.0; 3] { scene.gravity } else { scene.velocity };
+        (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+    };
+    let result = RunResult {
+        scene: scene.name.clone(),
+        response: cfg.response.name().to_string(),
+        detection: opts.effective_detection().name().to_string(),
+        precision: cfg.precision.to_string(),
+        seed: cfg.seed,
+        frames,
+        max_penetration: max_pen,
+        penetrating_frames: penetrating,
+        first_penetrating_frame: first_pen,
+        jitter: jitter(&positions, speed),
+        max_iterations,
+        mean_iterations: iterations_sum as f64 / moves.max(1) as f64,
+        capped_frames: capped,
+        nan_frames,
+        decision_flips: flips,
+        final_position: [0, 1, 2].map(|i| p[i].to_f64()),
+        snag: scene.ideal.and_then(|ideal| snag_ratio(&start, &p, ideal, frames)),
+        ns_per_move: ns as f64 / moves.max(1) as f64,
+    };
+    Ok(RunOutput { result, frames: records })
+}
+
+/// Runs one configuration.
+///
+/// # Errors
+/// Bad scene parameters ([`Error::InvalidRadius`], [`Error::ZeroVelocity`],
+/// [`Error::NonFinite`]) or an unusable precision.
+pub fn run(cfg: &RunConfig) -> Result<RunOutput, Error> {
+    match cfg.precision {
+        Precision::F32 => run_in::<f32>(cfg),
+        Precision::F64 => run_in::<f64>(cfg),
+        Precision::Mpfr(bits) => with_precision(bits, || run_in::<MpfrDyn>(cfg))?,
+    }
+}
+
+/// Runs every configuration on `jobs` threads (0: one per core). The
+/// results come back in the order of `configs` and do not depend on the
+/// number of threads (each run is sequential and self-contained); only
+/// `ns_per_move` varies between runs. `done` is called after each run.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] if the thread pool cannot be created.
+pub fn run_all(
+    configs: &[RunConfig],
+    jobs: usize,
+    done: &(dyn Fn(&RunConfig) + Sync),
+) -> Result<Vec<Result<RunOutput, Error>>, Error> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| Error::InvalidArgument { what: "jobs".into(), message: e.to_string() })?;
+    Ok(pool.install(|| {
+        configs
+            .par_iter()
+            .map(|c| {
+                let out = run(c);
+                done(c);
+                out
+            })
+            .collect()
+    }))
+}

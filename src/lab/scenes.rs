@@ -1,0 +1,517 @@
+//! Built-in scenes and OBJ scenes, each with sensible defaults for the body
+//! and its motion.
+//!
+//! Every coordinate of a built-in scene (vertices, start, velocities) is
+//! rounded to the nearest `f32` when the scene is built, so `f32`, `f64` and
+//! every MPFR precision of 24 bits or more see exactly the same geometry
+//! and inputs: differences between runs come from arithmetic alone. OBJ
+//! scenes keep the file's values; each backend then rounds them itself (and
+//! the metrics use the rounded values that backend stored).
+
+use super::rng::Rng;
+use crate::Error;
+use crate::world::TriangleMesh;
+use nalgebra::Vector3;
+use std::f64::consts::PI;
+use std::path::Path;
+use std::sync::Arc;
+
+/// How the pushing velocity evolves from frame to frame.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Motion {
+    /// The same velocity every frame.
+    Constant,
+    /// A player steering: every frame the horizontal (x, z) direction turns
+    /// by a seeded uniform angle in `[-turn_deg, turn_deg]`; the horizontal
+    /// speed and the vertical component stay.
+    RandomWalk {
+        /// Largest turn per frame, in degrees.
+        turn_deg: f64,
+    },
+}
+
+/// A scene: geometry plus the default body and motion.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Name (with its parameter, e.g. `wedge:1`).
+    pub name: String,
+    /// One line saying what it shows.
+    pub description: String,
+    /// The triangles.
+    pub mesh: Arc<TriangleMesh>,
+    /// Start of the body's centre.
+    pub start: [f64; 3],
+    /// The body's radii (equal for a sphere).
+    pub radii: [f64; 3],
+    /// Pushing displacement per frame.
+    pub velocity: [f64; 3],
+    /// Gravity displacement per frame (second pass; zero for none).
+    pub gravity: [f64; 3],
+    /// Default number of frames.
+    pub frames: usize,
+    /// How the velocity evolves.
+    pub motion: Motion,
+    /// The displacement per frame of an ideal, frictionless slide (for the
+    /// snag metric), where one is known.
+    pub ideal: Option<[f64; 3]>,
+}
+
+/// The built-in scenes: name, parameter meaning, description.
+pub const BUILTIN: &[(&str, &str, &str)] = &[
+    ("floor", "", "flat floor of two large triangles; the body slides along it while pressing down"),
+    (
+        "tessellated-floor",
+        "cells per side (40)",
+        "flat floor of many coplanar triangles with seeded random diagonals; internal edges everywhere",
+    ),
+    (
+        "corner",
+        "ramp angle in degrees (45)",
+        "the paper's Fig. 2: an obtuse corner between a floor and a ramp, body pushed down into it",
+    ),
+    (
+        "wedge",
+        "angle in degrees (10)",
+        "the paper's Fig. 4: an acute wedge, body pushed into its apex with a free direction along the edge",
+    ),
+    ("crease", "slope in degrees (30)", "a V-shaped valley; the body pushes down into it and along it"),
+    ("dead-end", "", "three perpendicular planes (floor and two walls); the body pushes into the corner"),
+    ("staircase", "steps (20)", "stairs of 0.15 rise and 0.6 run; a 0.5 sphere walks up with gravity"),
+    (
+        "terrain",
+        "grid cells per side (64)",
+        "seeded heightfield; a 0.5 sphere steered by a random walk at 5 m/s, 60 Hz, with gravity",
+    ),
+    ("soup", "triangles (200)", "seeded random triangle soup; the body wanders through it"),
+    (
+        "room",
+        "",
+        "a small level: floor, walls, pillars and ramps; an ellipsoid character steered by a random walk with gravity",
+    ),
+    (
+        "slot",
+        "clearance g (0.01)",
+        "two parallel walls 2 + g apart; the body slides along the slot pressing into one wall",
+    ),
+];
+
+/// The names of the built-in scenes.
+#[must_use]
+pub fn builtin_names() -> Vec<&'static str> {
+    BUILTIN.iter().map(|b| b.0).collect()
+}
+
+/// Rounds to the nearest `f32` (see the module docs).
+fn q(x: f64) -> f64 {
+    x as f32 as f64
+}
+
+fn q3(v: [f64; 3]) -> [f64; 3] {
+    v.map(q)
+}
+
+/// Collects triangles, orienting each so its front faces a given direction.
+#[derive(Default)]
+struct Builder {
+    vertices: Vec<[f64; 3]>,
+    triangles: Vec<[u32; 3]>,
+}
+
+impl Builder {
+    fn vertex(&mut self, v: [f64; 3]) -> u32 {
+        self.vertices.push(q3(v));
+        (self.vertices.len() - 1) as u32
+    }
+
+    /// A triangle whose front (counter-clockwise) side faces `facing`.
+    fn tri(&mut self, a: [f64; 3], b: [f64; 3], c: [f64; 3], facing: [f64; 3]) {
+        let (va, vb, vc) = (Vector3::from(a), Vector3::from(b), Vector3::from(c));
+        let n = (vb - va).cross(&(vc - va));
+        let (b, c) = if n.dot(&Vector3::from(facing)) < 0.0 { (c, b) } else { (b, c) };
+        let ids = [self.vertex(a), self.vertex(b), self.vertex(c)];
+        self.triangles.push(ids);
+    }
+
+    /// A planar quad `a b c d` (in order around it), split along `a c`.
+    fn quad(&mut self, a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], facing: [f64; 3]) {
+        self.tri(a, b, c, facing);
+        self.tri(a, c, d, facing);
+    }
+
+    /// An axis-aligned box without its bottom face, outward-facing.
+    fn open_box(&mut self, lo: [f64; 3], hi: [f64; 3]) {
+        let [x0, y0, z0] = lo;
+        let [x1, y1, z1] = hi;
+        self.quad([x0, y1, z0], [x1, y1, z0], [x1, y1, z1], [x0, y1, z1], [0.0, 1.0, 0.0]);
+        self.quad([x0, y0, z0], [x0, y1, z0], [x0, y1, z1], [x0, y0, z1], [-1.0, 0.0, 0.0]);
+        self.quad([x1, y0, z0], [x1, y1, z0], [x1, y1, z1], [x1, y0, z1], [1.0, 0.0, 0.0]);
+        self.quad([x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0], [0.0, 0.0, -1.0]);
+        self.quad([x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1], [0.0, 0.0, 1.0]);
+    }
+
+    fn mesh(self) -> Result<Arc<TriangleMesh>, Error> {
+        TriangleMesh::new(self.vertices, self.triangles).map(Arc::new)
+    }
+}
+
+const UP: [f64; 3] = [0.0, 1.0, 0.0];
+
+/// A scene skeleton with the given mesh and defaults; fields are then
+/// adjusted by the builders below.
+fn scene(name: String, description: &str, mesh: Arc<TriangleMesh>) -> Scene {
+    Scene {
+        name,
+        description: description.to_string(),
+        mesh,
+        start: [0.0; 3],
+        radii: [1.0; 3],
+        velocity: [0.0; 3],
+        gravity: [0.0; 3],
+        frames: 200,
+        motion: Motion::Constant,
+        ideal: None,
+    }
+}
+
+/// Builds a scene by name, `name` or `name:parameter` (see [`BUILTIN`]),
+/// with `seed` for the seeded ones.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for an unknown name or a parameter that is not
+/// a number or is out of range.
+pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
+    let (name, param) = match spec.split_once(':') {
+        Some((n, p)) => {
+            let value: f64 = p.parse().map_err(|_| bad(spec, format!("parameter `{p}` is not a number")))?;
+            if !value.is_finite() {
+                return Err(bad(spec, "parameter must be finite".to_string()));
+            }
+            (n, Some(value))
+        }
+        None => (spec, None),
+    };
+    let description = BUILTIN
+        .iter()
+        .find(|b| b.0 == name)
+        .map(|b| b.2)
+        .ok_or_else(|| bad(spec, format!("unknown scene (built-in scenes: {})", builtin_names().join(", "))))?;
+    let label = |default: f64| format!("{name}:{}", param.unwrap_or(default));
+    let in_range = |lo: f64, hi: f64, default: f64| -> Result<f64, Error> {
+        let v = param.unwrap_or(default);
+        if (lo..=hi).contains(&v) { Ok(v) } else { Err(bad(spec, format!("parameter must lie in [{lo}, {hi}]"))) }
+    };
+    let mut b = Builder::default();
+    let mut rng = Rng::new(seed);
+    let s = match name {
+        "floor" => {
+            b.quad([-50.0, 0.0, -50.0], [-50.0, 0.0, 50.0], [50.0, 0.0, 50.0], [50.0, 0.0, -50.0], UP);
+            let mut s = scene(name.to_string(), description, b.mesh()?);
+            s.start = [-20.0, 1.05, 0.0];
+            s.velocity = [0.1, -0.02, 0.0];
+            s.ideal = Some([0.1, 0.0, 0.0]);
+            s.frames = 300;
+            s
+        }
+        "tessellated-floor" => {
+            let n = in_range(1.0, 1000.0, 40.0)? as usize;
+            let half = n as f64 / 2.0;
+            for i in 0..n {
+                for k in 0..n {
+                    let (x0, z0) = (i as f64 - half, k as f64 - half);
+                    let c = [[x0, 0.0, z0], [x0 + 1.0, 0.0, z0], [x0 + 1.0, 0.0, z0 + 1.0], [x0, 0.0, z0 + 1.0]];
+                    if rng.coin() {
+                        b.quad(c[0], c[1], c[2], c[3], UP);
+                    } else {
+                        b.quad(c[1], c[2], c[3], c[0], UP);
+                    }
+                }
+            }
+            let mut s = scene(label(40.0), description, b.mesh()?);
+            s.start = [-half * 0.8, 1.05, -half * 0.3];
+            s.velocity = [0.1, -0.02, 0.037];
+            s.ideal = Some([0.1, 0.0, 0.037]);
+            s.frames = (n as f64 * 0.6 / 0.1).min(300.0) as usize;
+            s
+        }
+        "corner" => {
+            let a = in_range(1.0, 89.0, 45.0)?.to_radians();
+            b.quad([0.0, 0.0, -20.0], [0.0, 0.0, 20.0], [20.0, 0.0, 20.0], [20.0, 0.0, -20.0], UP);
+            let h = 20.0 * a.tan();
+            b.quad([-20.0, h, -20.0], [-20.0, h, 20.0], [0.0, 0.0, 20.0], [0.0, 0.0, -20.0], [a.sin(), a.cos(), 0.0]);
+            let mut s = scene(label(45.0), description, b.mesh()?);
+            s.start = [-1.5, 1.5 * a.tan() + 2.5, 0.0];
+            s.velocity = [-0.05, -0.1, 0.0];
+            s
+        }
+        "wedge" => {
+            let theta = in_range(0.5, 89.0, 10.0)?.to_radians();
+            let apex = 1.0 / (theta / 2.0).tan();
+            let len = (apex * 3.0).max(20.0);
+            let z = 20.0;
+            b.quad([0.0, 0.0, -z], [0.0, 0.0, z], [len, 0.0, z], [len, 0.0, -z], UP);
+            let top = [len * theta.cos(), len * theta.sin()];
+            b.quad(
+                [0.0, 0.0, -z],
+                [0.0, 0.0, z],
+                [top[0], top[1], z],
+                [top[0], top[1], -z],
+                [theta.sin(), -theta.cos(), 0.0],
+            );
+            let mut s = scene(label(10.0), description, b.mesh()?);
+            let x0 = apex + 5.0;
+            s.start = [x0, x0 * (theta / 2.0).tan(), -10.0];
+            s.velocity = [-0.1, 0.0, 0.02];
+            s.ideal = Some([0.0, 0.0, 0.02]);
+            s.frames = 300;
+            s
+        }
+        "crease" => {
+            let a = in_range(1.0, 80.0, 30.0)?.to_radians();
+            let h = 20.0 * a.tan();
+            b.quad([-20.0, h, -30.0], [-20.0, h, 30.0], [0.0, 0.0, 30.0], [0.0, 0.0, -30.0], [a.sin(), a.cos(), 0.0]);
+            b.quad([0.0, 0.0, -30.0], [0.0, 0.0, 30.0], [20.0, h, 30.0], [20.0, h, -30.0], [-a.sin(), a.cos(), 0.0]);
+            let mut s = scene(label(30.0), description, b.mesh()?);
+            s.start = [2.0, 2.0 * a.tan() + 3.0, -20.0];
+            s.velocity = [-0.05, -0.1, 0.1];
+            s.ideal = Some([0.0, 0.0, 0.1]);
+            s.frames = 300;
+            s
+        }
+        "dead-end" => {
+            b.quad([0.0, 0.0, 0.0], [0.0, 0.0, 20.0], [20.0, 0.0, 20.0], [20.0, 0.0, 0.0], UP);
+            b.quad([0.0, 0.0, 0.0], [0.0, 20.0, 0.0], [0.0, 20.0, 20.0], [0.0, 0.0, 20.0], [1.0, 0.0, 0.0]);
+            b.quad([0.0, 0.0, 0.0], [20.0, 0.0, 0.0], [20.0, 20.0, 0.0], [0.0, 20.0, 0.0], [0.0, 0.0, 1.0]);
+            let mut s = scene(name.to_string(), description, b.mesh()?);
+            s.start = [3.0, 3.0, 3.0];
+            s.velocity = [-0.1, -0.1, -0.1];
+            s
+        }
+        "staircase" => {
+            let steps = in_range(1.0, 1000.0, 20.0)? as usize;
+            let (rise, run, w) = (0.15, 0.6, 5.0);
+            b.quad([-10.0, 0.0, -w], [-10.0, 0.0, w], [0.0, 0.0, w], [0.0, 0.0, -w], UP);
+            for i in 0..steps {
+                let (x, y) = (i as f64 * run, i as f64 * rise);
+                b.quad([x, y, -w], [x, y + rise, -w], [x, y + rise, w], [x, y, w], [-1.0, 0.0, 0.0]);
+                b.quad([x, y + rise, -w], [x, y + rise, w], [x + run, y + rise, w], [x + run, y + rise, -w], UP);
+            }
+            let mut s = scene(label(20.0), description, b.mesh()?);
+            s.radii = [0.5; 3];
+            s.start = [-2.0, 0.51, 0.0];
+            s.velocity = [0.05, 0.0, 0.0];
+            s.gravity = [0.0, -0.01, 0.0];
+            s.frames = 300;
+            s
+        }
+        "terrain" => {
+            let n = in_range(2.0, 2048.0, 64.0)? as usize;
+            let cell = 0.5;
+            let waves: Vec<[f64; 4]> = (0..6)
+                .map(|k| {
+                    [
+                        rng.range(0.2, 1.0) / (k + 1) as f64,
+                        rng.range(0.05, 0.4),
+                        rng.range(0.0, 2.0 * PI),
+                        rng.range(0.0, PI),
+                    ]
+                })
+                .collect();
+            let height = |x: f64, z: f64| {
+                waves
+                    .iter()
+                    .map(|[amp, freq, phase, dir]| amp * ((x * dir.cos() + z * dir.sin()) * freq + phase).sin())
+                    .sum::<f64>()
+            };
+            let half = n as f64 * cell / 2.0;
+            let mut ids = Vec::with_capacity((n + 1) * (n + 1));
+            for i in 0..=n {
+                for k in 0..=n {
+                    let (x, z) = (i as f64 * cell - half, k as f64 * cell - half);
+                    ids.push(b.vertex([x, height(x, z) + rng.range(-0.01, 0.01), z]));
+                }
+            }
+            let id = |i: usize, k: usize| ids[i * (n + 1) + k];
+            for i in 0..n {
+                for k in 0..n {
+                    // Counter-clockwise seen from above: front faces up.
+                    b.triangles.push([id(i, k), id(i, k + 1), id(i + 1, k + 1)]);
+                    b.triangles.push([id(i, k), id(i + 1, k + 1), id(i + 1, k)]);
+                }
+            }
+            let mut s = scene(label(64.0), description, b.mesh()?);
+            s.radii = [0.5; 3];
+            s.start = [0.0, height(0.0, 0.0) + 2.0, 0.0];
+            s.velocity = [5.0 / 60.0, 0.0, 0.0];
+            s.gravity = [0.0, -0.01, 0.0];
+            s.motion = Motion::RandomWalk { turn_deg: 6.0 };
+            s.frames = 300;
+            s
+        }
+        "soup" => {
+            let count = in_range(1.0, 100_000.0, 200.0)? as usize;
+            let mut added = 0;
+            while added < count {
+                let centre = [rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), rng.range(-5.0, 5.0)];
+                let mut corner = || [0, 1, 2].map(|i| centre[i] + rng.range(-1.5, 1.5));
+                let (a, bb, c) = (corner(), corner(), corner());
+                let (va, vb, vc) = (Vector3::from(a), Vector3::from(bb), Vector3::from(c));
+                if (vb - va).cross(&(vc - va)).norm() > 0.1 {
+                    let facing = [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)];
+                    b.tri(a, bb, c, facing);
+                    added += 1;
+                }
+            }
+            let mesh = b.mesh()?;
+            let radius = 0.5;
+            let start = clear_start(&mesh, radius, &mut rng)?;
+            let mut s = scene(label(200.0), description, mesh);
+            s.radii = [radius; 3];
+            s.start = start;
+            s.velocity = [0.05, 0.0, 0.0];
+            s.motion = Motion::RandomWalk { turn_deg: 15.0 };
+            s.frames = 300;
+            s
+        }
+        "room" => {
+            let (w, hgt) = (10.0, 4.0);
+            b.quad([-w, 0.0, -w], [-w, 0.0, w], [w, 0.0, w], [w, 0.0, -w], UP);
+            b.quad([-w, 0.0, -w], [-w, hgt, -w], [-w, hgt, w], [-w, 0.0, w], [1.0, 0.0, 0.0]);
+            b.quad([w, 0.0, -w], [w, hgt, -w], [w, hgt, w], [w, 0.0, w], [-1.0, 0.0, 0.0]);
+            b.quad([-w, 0.0, -w], [w, 0.0, -w], [w, hgt, -w], [-w, hgt, -w], [0.0, 0.0, 1.0]);
+            b.quad([-w, 0.0, w], [w, 0.0, w], [w, hgt, w], [-w, hgt, w], [0.0, 0.0, -1.0]);
+            for (x, z) in [(-4.0, -4.0), (4.0, -4.0), (-4.0, 4.0), (4.0, 4.0)] {
+                b.open_box([x - 0.5, 0.0, z - 0.5], [x + 0.5, 3.0, z + 0.5]);
+            }
+            // A platform reached by a ramp, and a second, steeper ramp.
+            b.open_box([5.0, 0.0, -2.0], [9.0, 1.0, 2.0]);
+            b.quad([1.0, 0.0, -2.0], [1.0, 0.0, 2.0], [5.0, 1.0, 2.0], [5.0, 1.0, -2.0], UP);
+            b.quad([-9.0, 0.0, 6.0], [-9.0, 0.0, 9.0], [-6.0, 2.0, 9.0], [-6.0, 2.0, 6.0], UP);
+            let mut s = scene(name.to_string(), description, b.mesh()?);
+            s.radii = [0.4, 0.9, 0.4];
+            s.start = [0.0, 0.95, 0.0];
+            s.velocity = [0.08, 0.0, 0.0];
+            s.gravity = [0.0, -0.02, 0.0];
+            s.motion = Motion::RandomWalk { turn_deg: 10.0 };
+            s.frames = 600;
+            s
+        }
+        "slot" => {
+            let g = in_range(0.0, 10.0, 0.01)?;
+            let x = 1.0 + g / 2.0;
+            b.quad([-x, -5.0, -50.0], [-x, 5.0, -50.0], [-x, 5.0, 50.0], [-x, -5.0, 50.0], [1.0, 0.0, 0.0]);
+            b.quad([x, -5.0, -50.0], [x, 5.0, -50.0], [x, 5.0, 50.0], [x, -5.0, 50.0], [-1.0, 0.0, 0.0]);
+            let mut s = scene(label(0.01), description, b.mesh()?);
+            s.start = [0.0, 0.0, -20.0];
+            s.velocity = [0.02, 0.0, 0.1];
+            s.ideal = Some([0.0, 0.0, 0.1]);
+            s
+        }
+        _ => unreachable!("names come from BUILTIN"),
+    };
+    Ok(Scene { start: q3(s.start), velocity: q3(s.velocity), gravity: q3(s.gravity), ideal: s.ideal.map(q3), ..s })
+}
+
+fn bad(spec: &str, message: String) -> Error {
+    Error::InvalidArgument { what: format!("scene `{spec}`"), message }
+}
+
+/// A seeded start position at least `1.2 r` (approximately, in `f64`) from
+/// every triangle.
+fn clear_start(mesh: &TriangleMesh, r: f64, rng: &mut Rng) -> Result<[f64; 3], Error> {
+    let b = mesh.bounds();
+    for _ in 0..10_000 {
+        let p = Vector3::from_fn(|i, _| rng.range(b.min[i], b.max[i]));
+        let clear = (0..mesh.len() as u32).all(|t| {
+            let tri = mesh.triangle(t);
+            let (c, _) = crate::geom::closest_point_on_triangle(&p, &tri);
+            (p - c).norm() > 1.2 * r
+        });
+        if clear {
+            return Ok(p.into());
+        }
+    }
+    Err(Error::InvalidArgument { what: "scene".into(), message: "no free start position found".into() })
+}
+
+impl Scene {
+    /// A scene made of an OBJ file, with defaults scaled to its size: a
+    /// sphere of 2% of the bounding-box diagonal dropped from above the
+    /// middle and steered by a random walk with gravity.
+    ///
+    /// # Errors
+    /// As [`TriangleMesh::from_obj_file`].
+    pub fn from_obj(path: &Path) -> Result<Self, Error> {
+        let mesh = TriangleMesh::from_obj_file(path)?;
+        let b = *mesh.bounds();
+        let diag = (b.max - b.min).norm();
+        let r = 0.02 * diag;
+        let centre = b.centre();
+        let name = path.file_stem().map_or_else(|| path.display().to_string(), |s| s.to_string_lossy().into_owned());
+        Ok(Scene {
+            name,
+            description: format!("mesh {} ({} triangles)", path.display(), mesh.len()),
+            mesh: Arc::new(mesh),
+            start: [centre.x, b.max.y + 2.0 * r, centre.z],
+            radii: [r; 3],
+            velocity: [0.004 * diag, 0.0, 0.0015 * diag],
+            gravity: [0.0, -0.004 * diag, 0.0],
+            frames: 300,
+            motion: Motion::RandomWalk { turn_deg: 8.0 },
+            ideal: None,
+        })
+    }
+
+    /// The scene moved by `offset` (geometry and start), rounded again to
+    /// `f32` for built-in scenes so every backend still sees the same
+    /// values (the shape may change by that rounding, about `6e-8 |offset|`).
+    ///
+    /// # Errors
+    /// [`Error::EmptyMesh`] (with the reasons in the error) if the rounding
+    /// at that offset collapses every triangle.
+    pub fn offset(&self, offset: [f64; 3], round_to_f32: bool) -> Result<Scene, Error> {
+        if offset == [0.0; 3] {
+            return Ok(self.clone());
+        }
+        let o = Vector3::from(offset);
+        let round = |v: [f64; 3]| if round_to_f32 { q3(v) } else { v };
+        let vertices: Vec<[f64; 3]> = self.mesh.vertices().iter().map(|v| round((v + o).into())).collect();
+        let mesh = Arc::new(TriangleMesh::new_skipping_invalid(vertices, self.mesh.triangles().to_vec())?);
+        Ok(Scene {
+            name: format!("{}@{},{},{}", self.name, offset[0], offset[1], offset[2]),
+            mesh,
+            start: round((Vector3::from(self.start) + o).into()),
+            ..self.clone()
+        })
+    }
+}
+
+/// The per-run state of a motion program: the steering heading and its
+/// seeded generator.
+#[derive(Clone, Debug)]
+pub struct Steering {
+    heading: f64,
+    rng: Rng,
+}
+
+impl Steering {
+    /// The state at frame 0 of `scene` for `seed`.
+    #[must_use]
+    pub fn new(scene: &Scene, seed: u64) -> Self {
+        Steering { heading: scene.velocity[2].atan2(scene.velocity[0]), rng: Rng::new(seed ^ 0x57ee_0000_0000_0001) }
+    }
+
+    /// The pushing velocity of the next frame, rounded to `f32` like the
+    /// scene.
+    pub fn next(&mut self, scene: &Scene) -> [f64; 3] {
+        match scene.motion {
+            Motion::Constant => scene.velocity,
+            Motion::RandomWalk { turn_deg } => {
+                self.heading += self.rng.range(-turn_deg, turn_deg).to_radians();
+                let [vx, vy, vz] = scene.velocity;
+                let speed = vx.hypot(vz);
+                q3([speed * self.heading.cos(), vy, speed * self.heading.sin()])
+            }
+        }
+    }
+}
