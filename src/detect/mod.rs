@@ -13,7 +13,7 @@ pub mod sphere_triangle;
 pub use sphere_triangle::{fauerby_point_in_triangle, sweep_fauerby, sweep_robust};
 
 use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, is_finite, norm, normalize};
-use crate::world::World;
+use crate::world::{ActiveFeatures, World};
 use crate::{Error, Real};
 
 /// Which sphere-vs-triangle test to run.
@@ -28,19 +28,22 @@ pub enum Detection {
 }
 
 impl Detection {
-    /// Runs this variant on one triangle.
+    /// Runs this variant on one candidate. Fauerby's ignores the active
+    /// features (every edge of his is a real edge) and `limit`; the robust
+    /// one only reports a hit earlier than `limit` (the best so far), which
+    /// lets it give up early on triangles that cannot win.
     #[must_use]
     pub fn sweep<T: Real>(
         self,
-        tri: &Triangle<T>,
+        c: &Candidate<T>,
         base: &Vec3<T>,
         vel: &Vec3<T>,
         opts: &DetectOptions,
-        index: u32,
+        limit: Option<&T>,
     ) -> Option<Hit<T>> {
         match self {
-            Detection::Fauerby => sweep_fauerby(tri, base, vel, index),
-            Detection::Robust => sweep_robust(tri, base, vel, opts, index),
+            Detection::Fauerby => sweep_fauerby(&c.triangle, base, vel, c.index),
+            Detection::Robust => sweep_robust(c, base, vel, opts, limit),
         }
     }
 
@@ -101,9 +104,46 @@ pub struct Hit<T: Real> {
 pub struct Neighbourhood<T: Real> {
     /// World-space origin of the eSpace coordinates.
     pub origin: Vec3<T>,
-    /// `(index, triangle)` pairs, increasing index, in eSpace relative to
-    /// `origin`.
-    pub triangles: Vec<(u32, Triangle<T>)>,
+    /// The candidates, by increasing index, in eSpace relative to `origin`.
+    pub triangles: Vec<Candidate<T>>,
+}
+
+/// A triangle of a mesh ready for detection, with what every sweep of a
+/// frame would otherwise recompute: its unit normal and its box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Candidate<T: Real> {
+    /// Its index in the mesh.
+    pub index: u32,
+    /// Its vertices, in the coordinates of the query.
+    pub triangle: Triangle<T>,
+    /// Its active edges and vertices ([`ActiveFeatures::ALL`] for a lone
+    /// triangle).
+    pub active: ActiveFeatures,
+    /// Unit front normal `normalize((b - a) x (c - a))`, `None` if the
+    /// triangle is degenerate in this precision.
+    pub normal: Option<Vec3<T>>,
+    /// Lower corner of its box.
+    pub lo: Vec3<T>,
+    /// Upper corner of its box.
+    pub hi: Vec3<T>,
+}
+
+impl<T: Real> Candidate<T> {
+    /// A candidate from a triangle of a mesh.
+    #[must_use]
+    pub fn new(index: u32, triangle: Triangle<T>, active: ActiveFeatures) -> Self {
+        let normal = normalize(&triangle.unnormalized_normal());
+        let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
+        let lo = Vec3::from_fn(|i, _| a[i].clone().min(b[i].clone()).min(c[i].clone()));
+        let hi = Vec3::from_fn(|i, _| a[i].clone().max(b[i].clone()).max(c[i].clone()));
+        Candidate { index, triangle, active, normal, lo, hi }
+    }
+
+    /// A lone triangle (every edge and vertex active).
+    #[must_use]
+    pub fn lone(index: u32, triangle: Triangle<T>) -> Self {
+        Self::new(index, triangle, ActiveFeatures::ALL)
+    }
 }
 
 impl<T: Real> Neighbourhood<T> {
@@ -125,7 +165,8 @@ impl<T: Real> Neighbourhood<T> {
             .iter()
             .map(|&t| {
                 let w = world.triangle(t);
-                (t, Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c)))
+                let triangle = Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c));
+                Candidate::new(t, triangle, world.mesh().active(t))
             })
             .collect();
         Neighbourhood { origin, triangles }
@@ -141,23 +182,27 @@ impl<T: Real> Neighbourhood<T> {
         vel: &Vec3<T>,
         opts: &DetectOptions,
     ) -> Option<Hit<T>> {
-        earliest_hit(detection, self.triangles.iter().map(|(i, t)| (*i, t)), base, vel, opts)
+        earliest_hit(detection, &self.triangles, base, vel, opts)
     }
 }
 
 /// The earliest hit over `triangles`: smallest `t`, ties to the lowest
-/// triangle index (so the answer does not depend on the order given).
+/// triangle index (so the answer does not depend on the order given; the
+/// robust variant prunes with the best time so far, which is exact for
+/// candidates given in increasing index order, as [`Neighbourhood`] keeps
+/// them).
 #[must_use]
 pub fn earliest_hit<'a, T: Real + 'a>(
     detection: Detection,
-    triangles: impl IntoIterator<Item = (u32, &'a Triangle<T>)>,
+    triangles: impl IntoIterator<Item = &'a Candidate<T>>,
     base: &Vec3<T>,
     vel: &Vec3<T>,
     opts: &DetectOptions,
 ) -> Option<Hit<T>> {
     let mut best: Option<Hit<T>> = None;
-    for (index, tri) in triangles {
-        if let Some(h) = detection.sweep(tri, base, vel, opts, index) {
+    for c in triangles {
+        let limit = best.as_ref().map(|b| &b.t);
+        if let Some(h) = detection.sweep(c, base, vel, opts, limit) {
             let better = match &best {
                 None => true,
                 Some(b) => h.t < b.t || (h.t == b.t && h.triangle < b.triangle),

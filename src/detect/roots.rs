@@ -37,14 +37,10 @@ pub fn textbook_lowest_root<T: Real>(a: &T, b: &T, c: &T, max_r: &T) -> Option<T
 }
 
 /// `b^2 - a c`, accurate to a few units in the last place even when the two
-/// products nearly cancel (Kahan's discriminant with fused multiply-adds;
-/// Jeannerod, Louvet and Muller 2013 bound its error by `2u |b^2 - ac|`).
+/// products nearly cancel ([`Real::diff_of_products`]).
 #[must_use]
 pub fn discriminant<T: Real>(a: &T, half_b: &T, c: &T) -> T {
-    let w = a.clone() * c;
-    let e = (-a.clone()).mul_add(c, &w); // w - a*c, exactly
-    let f = half_b.mul_add(half_b, &-w);
-    f + &e
+    T::diff_of_products(half_b, half_b, a, c)
 }
 
 /// The entry time of `a t^2 + 2 half_b t + c = 0` for a body that starts

@@ -3,8 +3,10 @@
 //! sphere centred at `base`, moving by `vel` over `t` in `[0, 1]`).
 
 use super::roots::{stable_entry_root, textbook_lowest_root};
-use super::{DetectOptions, Hit};
+use super::{Candidate, DetectOptions, Hit};
 use crate::Real;
+use crate::world::ActiveFeatures;
+
 use crate::geom::{
     Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize,
 };
@@ -162,51 +164,101 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
 ///   `(e.v)^2`), solved by [`stable_entry_root`] and only when the body
 ///   starts outside the feature.
-/// * No exact float equality decides anything; `tol =
-///   opts.touch_ulps * u * s` with `u` the unit roundoff and
-///   `s = max(1, |tri - base|_inf, |vel|_inf)` the magnitude of the inputs.
+/// * No exact float equality decides anything. The touching tolerance is
+///   `tol = opts.touch_ulps * u * s`, `u` the unit roundoff and
+///   `s = max(1, |q|_inf)` the magnitude of the point `q` the distance is
+///   measured from (the vertex nearest the centre for the face, the nearer
+///   endpoint for an edge, the vertex itself), all relative to `base`.
+///
+/// * A contact on an inactive (internal) edge or vertex, as `active` says,
+///   takes the face normal, both for deciding whether a touching sphere
+///   approaches and for the reported normal, so the seams of a tessellated
+///   surface neither snag nor stop a sliding body.
 ///
 /// Ties: face before edges before vertices, lower feature index first.
 #[must_use]
 pub fn sweep_robust<T: Real>(
-    tri: &Triangle<T>,
+    c: &Candidate<T>,
     base: &Vec3<T>,
     vel: &Vec3<T>,
     opts: &DetectOptions,
-    index: u32,
+    limit: Option<&T>,
 ) -> Option<Hit<T>> {
     let zero = T::zero();
     let one = T::one();
-    let rel = tri.relative_to(base);
+    let (index, active) = (c.index, c.active);
+    // A hit must come before `limit` (an earlier triangle's hit) or, with
+    // none yet, within the frame.
+    let wins = |t: &T| limit.map_or(*t <= one, |l| t < l);
+    // Quick rejection: the box around the swept sphere (grown by a
+    // rounding margin) misses the triangle's box.
+    let reach = T::c(1.0 + 1e-3);
+    for i in 0..3 {
+        let end = base[i].clone() + &vel[i];
+        let (lo, hi) = if vel[i] < zero { (end, base[i].clone()) } else { (base[i].clone(), end) };
+        if c.lo[i] > hi + &reach || c.hi[i] < lo - &reach {
+            return None;
+        }
+    }
+    let rel = c.triangle.relative_to(base);
     let p = [&rel.a, &rel.b, &rel.c];
-    let scale = p.iter().copied().chain([vel]).flat_map(|v| v.iter()).fold(one.clone(), |m, x| m.max(x.abs()));
-    let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * &scale;
-    let mut normal = normalize(&rel.unnormalized_normal());
+    let mut normal = c.normal.clone();
+    let nearest = (0..3)
+        .min_by(|&i, &k| norm_squared(p[i]).partial_cmp(&norm_squared(p[k])).unwrap_or(std::cmp::Ordering::Equal))?;
 
     // Which side the centre (the origin, now) is on, from the nearest vertex.
     let mut plane_dist = zero.clone();
-    if let Some(n) = &normal {
-        let nearest = p
-            .iter()
-            .min_by(|u, v| norm_squared(*u).partial_cmp(&norm_squared(*v)).unwrap_or(std::cmp::Ordering::Equal))?;
-        plane_dist = -dot(n, nearest);
+    if let Some(n) = normal.as_mut() {
+        plane_dist = -dot(n, p[nearest]);
         if plane_dist < zero {
             if !opts.two_sided {
                 return None;
             }
-            normal = Some(-n.clone());
+            *n = -n.clone();
             plane_dist = -plane_dist;
         }
+        // Quick rejection: the sphere stays clear of the whole plane, or
+        // reaches it too late to beat `limit`.
+        let nv = dot(n, vel);
+        if plane_dist.clone() + nv.clone().min(zero.clone()) > reach {
+            return None;
+        }
+        if plane_dist > reach && nv < zero && !wins(&((plane_dist.clone() - &reach) / -nv)) {
+            return None;
+        }
     }
+    let far = p.iter().flat_map(|v| v.iter()).fold(one.clone(), |m, x| m.max(x.abs()));
+    let may_touch = plane_dist <= one.clone() + T::c(opts.touch_ulps * T::unit_roundoff()) * far || normal.is_none();
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
-    // Touching or overlapping at the start.
+    // Touching or overlapping at the start: distance and separating
+    // direction computed per feature, from the nearest point that defines
+    // it, so both carry errors of order u * |that point| only.
     let origin = Vec3::zeros();
-    let (closest, feature) = closest_point_on_triangle(&origin, &rel);
-    let dist = norm(&closest);
+    let (closest, feature) =
+        if may_touch { closest_point_on_triangle(&origin, &rel) } else { (origin.clone(), Feature::Face) };
+    let (dist, sep, local) = match (feature, &normal) {
+        _ if !may_touch => (plane_dist.clone(), face_normal.clone(), p[nearest]),
+        (Feature::Face, Some(n)) => (plane_dist.clone(), n.clone(), p[nearest]),
+        (Feature::Edge(i), _) => {
+            let (a, b) = (p[i as usize], p[(i as usize + 1) % 3]);
+            let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, b - a) } else { (b, a - b) };
+            let perp = -from - &e * (dot(&-from, &e) / norm_squared(&e));
+            let d = norm(&perp);
+            let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
+            (d, sep, from)
+        }
+        _ => {
+            let d = norm(&closest);
+            let sep = normalize(&-closest.clone()).unwrap_or_else(|| face_normal.clone());
+            (d, sep, p[nearest])
+        }
+    };
+    let sep = if is_active(feature, active) { sep } else { face_normal.clone() };
+    let scale = local.iter().fold(one.clone(), |m, x| m.max(x.abs()));
+    let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * &scale;
     if dist <= one.clone() + &tol {
-        let sep = if dist > tol { -closest.clone() / dist.clone() } else { face_normal.clone() };
-        if dot(&sep, vel) < zero {
+        if dot(&sep, vel) < zero && wins(&zero) {
             let overlapping = dist < one - &tol;
             return Some(Hit {
                 t: zero,
@@ -225,7 +277,7 @@ pub fn sweep_robust<T: Real>(
         let nv = dot(n, vel);
         if nv < zero && plane_dist > one {
             let t = (plane_dist - &one) / -nv;
-            if t <= one {
+            if wins(&t) {
                 let contact = vel * t.clone() - n;
                 let inside = (0..3).all(|i| {
                     let (a, b) = (p[i], p[(i + 1) % 3]);
@@ -249,7 +301,7 @@ pub fn sweep_robust<T: Real>(
     // the feature found first stays.
     let mut best: Option<Touch<T>> = None;
     let better = |t: &T, best: &Option<Touch<T>>| match best {
-        None => *t <= one,
+        None => wins(t),
         Some(b) => *t < b.t,
     };
     for i in 0..3 {
@@ -285,5 +337,21 @@ pub fn sweep_robust<T: Real>(
             best = Some(Touch { t, point: (*v).clone(), centre, feature: Feature::Vertex(i as u8) });
         }
     }
-    Some(best?.into_hit(Some(base), &face_normal, index, false))
+    let touch = best?;
+    let feature = touch.feature;
+    let mut hit = touch.into_hit(Some(base), &face_normal, index, false);
+    if !is_active(feature, active) {
+        hit.normal = face_normal;
+    }
+    Some(hit)
+}
+
+/// Whether a contact on `feature` keeps its own normal (an active edge or
+/// vertex, or the face) or takes the face normal (an internal one).
+fn is_active(feature: Feature, active: ActiveFeatures) -> bool {
+    match feature {
+        Feature::Face => true,
+        Feature::Edge(i) => active.edge(i),
+        Feature::Vertex(i) => active.vertex(i),
+    }
 }

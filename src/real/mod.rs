@@ -76,6 +76,20 @@ pub trait Real:
     /// `self * a + b` with a single rounding (fused multiply-add).
     fn mul_add(&self, a: &Self, b: &Self) -> Self;
 
+    /// `a * b - c * d` with an error of at most `2u |a b - c d|` plus
+    /// underflow (Kahan's algorithm; Jeannerod, Louvet and Muller 2013), the
+    /// form that keeps a quadratic's discriminant accurate when its two
+    /// terms nearly cancel. Backends reach the bound differently (a fused
+    /// multiply-add, exact products in a wider format, or Dekker's exact
+    /// product), so results may differ between backends in the last bit.
+    #[must_use]
+    fn diff_of_products(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
+        let w = c.clone() * d;
+        let e = (-c.clone()).mul_add(d, &w); // c*d - w, exactly
+        let f = a.mul_add(b, &-w);
+        f + &e
+    }
+
     /// `true` unless the value is NaN or infinite.
     fn is_finite(&self) -> bool;
 

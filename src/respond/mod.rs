@@ -160,6 +160,9 @@ pub struct Move<T: Real> {
     pub trace: Trace<T>,
 }
 
+/// How far beyond the radii a frame gathers candidates, in radii.
+pub(crate) const REACH_MARGIN: f64 = 1.05;
+
 /// One frame's shared state: the candidate triangles in eSpace and the
 /// trace being written.
 pub(crate) struct Frame<'w, T: Real> {
@@ -169,6 +172,8 @@ pub(crate) struct Frame<'w, T: Real> {
     pub detect: &'w DetectOptions,
     pub hood: Neighbourhood<T>,
     pub trace: Trace<T>,
+    /// This frame's displacements (velocity, gravity), world space.
+    pub moves: [Vec3<T>; 2],
 }
 
 impl<T: Real> Frame<'_, T> {
@@ -177,6 +182,14 @@ impl<T: Real> Frame<'_, T> {
     pub fn check_collision(&mut self, base: &Vec3<T>, vel: &Vec3<T>) -> Option<Hit<T>> {
         self.trace.iterations += 1;
         self.hood.earliest_hit(self.detection, base, vel, self.detect)
+    }
+
+    /// Gathers the candidates again around eSpace position `p` (after a
+    /// push-out moved the body beyond the gathered box's margin).
+    pub fn regather(&mut self, p: &Vec3<T>) {
+        let at = self.body.from_espace(p) + &self.hood.origin;
+        let (min, max) = reach_box(self.body, &at, &[&self.moves[0], &self.moves[1]]);
+        self.hood = Neighbourhood::gather(self.world, self.body, self.hood.origin.clone(), &min, &max, &mut Vec::new());
     }
 
     /// Records a contact.
@@ -218,11 +231,13 @@ pub fn move_body<T: Real>(
     let mut scratch = Vec::new();
     let hood = Neighbourhood::gather(world, body, origin.clone(), &min, &max, &mut scratch);
     let trace = Trace { iterations: 0, contacts: Vec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
+    let moves = [velocity.clone(), gravity.clone()];
     let mut frame =
-        Frame { world, body, detection: options.effective_detection(), detect: &options.detect, hood, trace };
+        Frame { world, body, detection: options.effective_detection(), detect: &options.detect, hood, trace, moves };
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();
-    if options.response == Response::Robust {
+    let at_rest = [velocity, gravity].iter().all(|v| v.iter().all(|x| *x == T::zero()));
+    if options.response == Response::Robust && at_rest {
         p = robust::depenetrate(&mut frame, p, &options.robust);
     }
     for vel in [velocity, gravity] {
@@ -241,8 +256,9 @@ pub fn move_body<T: Real>(
 }
 
 /// The world-space box that holds the body anywhere it can reach from
-/// `position` by the given displacements one after the other, grown by half
-/// a radius for paddings and push-outs.
+/// `position` by the given displacements one after the other, grown by 5%
+/// of the radii for paddings and push-outs (the robust response gathers
+/// again if a push-out takes it further).
 fn reach_box<T: Real>(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
     let mut min = position.clone();
     let mut max = position.clone();
@@ -257,6 +273,6 @@ fn reach_box<T: Real>(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>
             max[i] = max[i].clone().max(c[i].clone());
         }
     }
-    let grow = body.radii() * T::c(1.5);
+    let grow = body.radii() * T::c(REACH_MARGIN);
     (min - &grow, max + grow)
 }

@@ -12,10 +12,11 @@
 //!    body is pushed out along `n` by the shortfall, never further than half
 //!    the room to whatever lies behind it (so it centres in a slot narrower
 //!    than `2 + 2 pad` instead of jamming).
-//! 3. Add the contact's sliding-plane normal to the set of planes met this
-//!    pass. An edge or vertex contact between coplanar or gently convex
-//!    triangles (an internal edge of a tessellated surface) takes the face
-//!    normal instead, so seams do not snag.
+//! 3. Add the contact normal to the set of planes met this pass. (The
+//!    robust detection already gives an edge or vertex contact between
+//!    coplanar or gently convex triangles, an internal edge of a tessellated
+//!    surface, the face normal, so seams do not snag; see
+//!    [`crate::world::Adjacency::active_features`].)
 //! 4. Project the original displacement, scaled by the fraction of the
 //!    frame left, onto the cone
 //!    `{v : v . n_i >= 0 for every plane met}`: exactly, by trying the
@@ -33,8 +34,9 @@
 //!
 //! Padding: `pad = padding_ulps * u * s + position_ulps * u * |start|`,
 //! capped at `max_padding`, where `u` is the unit roundoff, `s` the
-//! magnitude of the relative coordinates involved (the triangle, the
-//! position and the velocity, at least 1) and `|start|` the largest eSpace
+//! magnitude of the relative coordinates the contact was computed from (the
+//! distance to the triangle's nearest vertex and the displacement, at least
+//! 1) and `|start|` the largest eSpace
 //! coordinate of the frame's start (which bounds the rounding of the final
 //! `start + displacement`). In `f32` at the origin that is about `1e-5`,
 //! in `f64` about `3e-14`, at `1e5` in `f32` about `0.03` (eSpace units).
@@ -54,7 +56,8 @@ use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot
 pub struct RobustOptions {
     /// Sweeps per pass at most (default 8).
     pub max_iterations: u32,
-    /// Padding per unit of `u * s` (detection rounding; default 64).
+    /// Padding per unit of `u * s` (detection rounding; default 48, three
+    /// times the detection's touching tolerance).
     pub padding_ulps: f64,
     /// Padding per unit of `u * |start|` (final-position rounding; default 4).
     pub position_ulps: f64,
@@ -67,10 +70,6 @@ pub struct RobustOptions {
     /// A displacement counts as admissible for a plane when
     /// `v . n >= -feasible_ulps * u * |v|` (default 64).
     pub feasible_ulps: f64,
-    /// Edges between triangles whose normals have a cosine of at least this
-    /// (and concave edges) are internal: contacts on them slide on the face
-    /// normal. Default `cos 5 deg`.
-    pub internal_edge_cos: f64,
     /// Push-out rounds for a body that starts embedded (default 4).
     pub depenetration_rounds: u32,
 }
@@ -79,12 +78,11 @@ impl Default for RobustOptions {
     fn default() -> Self {
         RobustOptions {
             max_iterations: 8,
-            padding_ulps: 64.0,
+            padding_ulps: 48.0,
             position_ulps: 4.0,
             max_padding: 0.01,
             parallel_ulps: 1024.0,
             feasible_ulps: 64.0,
-            internal_edge_cos: 5f64.to_radians().cos(),
             depenetration_rounds: 4,
         }
     }
@@ -95,61 +93,28 @@ fn magnitude<T: Real>(v: &Vec3<T>) -> f64 {
     v.iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
 }
 
-/// The padding for a contact on `tri` (see the module docs).
+/// The padding for a contact on `tri` at position `p` (see the module
+/// docs): `s` is the larger of 1, the displacement and the distance from
+/// `p` to the triangle's nearest vertex, the magnitudes that the contact's
+/// distance was computed from.
 fn padding<T: Real>(frame: &Frame<'_, T>, p: &Vec3<T>, w: &Vec3<T>, tri: &Triangle<T>, opts: &RobustOptions) -> T {
     let u = T::unit_roundoff();
-    let s = [p, w, &tri.a, &tri.b, &tri.c].into_iter().map(magnitude).fold(1.0, f64::max);
+    let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
+    let s = magnitude(w).max(nearest).max(1.0);
     let start = magnitude(&frame.body.to_espace(&frame.hood.origin));
     T::c((opts.padding_ulps * u * s + opts.position_ulps * u * start).min(opts.max_padding))
 }
 
 /// Triangle `index` in the frame's eSpace coordinates.
 fn triangle_e<T: Real>(frame: &Frame<'_, T>, index: u32) -> Triangle<T> {
-    match frame.hood.triangles.binary_search_by_key(&index, |(i, _)| *i) {
-        Ok(k) => frame.hood.triangles[k].1.clone(),
+    match frame.hood.triangles.binary_search_by_key(&index, |c| c.index) {
+        Ok(k) => frame.hood.triangles[k].triangle.clone(),
         Err(_) => {
             let w = frame.world.triangle(index);
             let to_e = |v: &Vec3<T>| frame.body.to_espace(&(v - &frame.hood.origin));
             Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c))
         }
     }
-}
-
-/// The unit normal of `tri` on the side `towards` points to.
-fn oriented_normal<T: Real>(tri: &Triangle<T>, towards: &Vec3<T>) -> Option<Vec3<T>> {
-    let n = normalize(&tri.unnormalized_normal())?;
-    Some(if dot(&n, towards) < T::zero() { -n } else { n })
-}
-
-/// The sliding-plane normal of a contact: the contact normal, except on an
-/// internal edge or vertex (see [`RobustOptions::internal_edge_cos`]), where
-/// it is the face normal.
-fn plane_normal<T: Real>(frame: &Frame<'_, T>, hit: &crate::detect::Hit<T>, opts: &RobustOptions) -> Vec3<T> {
-    if hit.feature == Feature::Face {
-        return hit.normal.clone();
-    }
-    let tri = triangle_e(frame, hit.triangle);
-    let Some(face) = oriented_normal(&tri, &hit.normal) else { return hit.normal.clone() };
-    let cos_min = T::c(opts.internal_edge_cos);
-    let adjacency = frame.world.mesh().adjacency();
-    let internal = match hit.feature {
-        Feature::Edge(e) => adjacency.neighbour(hit.triangle, e).is_some_and(|nb| {
-            let other = triangle_e(frame, nb);
-            let a = tri.vertex(e as usize);
-            // Concave: the neighbour rises on the body's side of this face.
-            let rise = [&other.a, &other.b, &other.c].into_iter().map(|v| dot(&face, &(v - a))).fold(T::zero(), T::max);
-            let flat = oriented_normal(&other, &hit.normal).is_some_and(|n| dot(&n, &face) >= cos_min);
-            flat || rise > T::zero()
-        }),
-        Feature::Vertex(v) => {
-            let vertex = frame.world.mesh().triangles()[hit.triangle as usize][v as usize];
-            adjacency.triangles_around(vertex).iter().all(|&t| {
-                oriented_normal(&triangle_e(frame, t), &hit.normal).is_some_and(|n| dot(&n, &face) >= cos_min)
-            })
-        }
-        Feature::Face => false,
-    };
-    if internal { face } else { hit.normal.clone() }
 }
 
 /// The closest displacement to `w` that does not move into any of the
@@ -224,6 +189,10 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             frame.trace.stop = StopReason::Free;
             return p + remaining;
         };
+        if hit.started_overlapping && frame.trace.depenetration == 0.0 {
+            p = depenetrate(frame, p, opts);
+            continue;
+        }
         let tri = triangle_e(frame, hit.triangle);
         let pad = padding(frame, &p, &remaining, &tri, opts);
         let approach = -dot(&remaining, &hit.normal);
@@ -234,7 +203,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
         if gap < pad {
             p = push_out(frame, p, &hit.normal, pad - &gap, &gap);
         }
-        let n = plane_normal(frame, &hit, opts);
+        let n = hit.normal.clone();
         frame.record(hit, n.clone());
         normals.push(n);
         time_left *= T::one() - t_move;
@@ -253,7 +222,7 @@ pub(crate) fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opt
     let one = T::one();
     for _ in 0..opts.depenetration_rounds {
         let mut deepest: Option<(T, Vec3<T>, Feature, &Triangle<T>)> = None;
-        for (_, tri) in &frame.hood.triangles {
+        for tri in frame.hood.triangles.iter().map(|c| &c.triangle) {
             let (q, feature) = closest_point_on_triangle(&p, tri);
             let dist = norm(&(&p - &q));
             if dist < one && deepest.as_ref().is_none_or(|d| dist < d.0) {
@@ -276,6 +245,9 @@ pub(crate) fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opt
         let push = depth + &pad;
         frame.trace.depenetration += push.to_f64();
         p += dir * push;
+    }
+    if frame.trace.depenetration > super::REACH_MARGIN - 1.0 {
+        frame.regather(&p);
     }
     p
 }

@@ -6,6 +6,30 @@
 use nalgebra::Vector3;
 use std::collections::HashMap;
 
+/// Which features of a triangle are *active*, i.e. real edges and corners
+/// of the surface, as opposed to internal edges and vertices of a flat or
+/// gently convex tessellation (Jolt's "active edges"). A contact on an
+/// inactive feature takes the face normal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ActiveFeatures(u8);
+
+impl ActiveFeatures {
+    /// Every edge and vertex active (a lone triangle).
+    pub const ALL: ActiveFeatures = ActiveFeatures(0b11_1111);
+
+    /// Whether edge `i` (from vertex `i` to `i + 1`) is active.
+    #[must_use]
+    pub fn edge(self, i: u8) -> bool {
+        self.0 & (1 << (i % 3)) != 0
+    }
+
+    /// Whether vertex `i` is active.
+    #[must_use]
+    pub fn vertex(self, i: u8) -> bool {
+        self.0 & (8 << (i % 3)) != 0
+    }
+}
+
 /// Which triangles meet at each edge and vertex.
 #[derive(Clone, Debug, Default)]
 pub struct Adjacency {
@@ -74,6 +98,59 @@ impl Adjacency {
     #[must_use]
     pub fn neighbour(&self, triangle: u32, edge: u8) -> Option<u32> {
         self.neighbours[triangle as usize][edge as usize % 3]
+    }
+
+    /// The active features of every triangle. Edge `i` of `t` is inactive
+    /// when exactly one other triangle shares it and the two are nearly
+    /// coplanar (the cosine between their consistently oriented normals is at
+    /// least `cos_min`) or the edge is concave seen from the front face (the
+    /// neighbour rises on that side; a sphere touching such an edge touches
+    /// the neighbouring face too). A vertex is inactive when every triangle
+    /// around it is nearly coplanar with `t` (`|cos| >= cos_min`).
+    #[must_use]
+    pub fn active_features(
+        &self,
+        vertices: &[Vector3<f64>],
+        triangles: &[[u32; 3]],
+        cos_min: f64,
+    ) -> Vec<ActiveFeatures> {
+        let normal = |t: usize| {
+            let [a, b, c] = triangles[t].map(|i| vertices[i as usize]);
+            (b - a).cross(&(c - a)).normalize()
+        };
+        let welded = |t: usize| triangles[t].map(|i| self.weld[i as usize]);
+        (0..triangles.len())
+            .map(|t| {
+                let n = normal(t);
+                let w = welded(t);
+                let mut bits = 0u8;
+                for e in 0..3 {
+                    let Some(nb) = self.neighbours[t][e] else {
+                        bits |= 1 << e;
+                        continue;
+                    };
+                    let wn = welded(nb as usize);
+                    // Consistent winding runs the shared edge the other way.
+                    let (p, q) = (w[e], w[(e + 1) % 3]);
+                    let same_way = (0..3).any(|k| wn[k] == p && wn[(k + 1) % 3] == q);
+                    let m = if same_way { -normal(nb as usize) } else { normal(nb as usize) };
+                    let a = vertices[triangles[t][e] as usize];
+                    let rise =
+                        triangles[nb as usize].iter().map(|&v| n.dot(&(vertices[v as usize] - a))).fold(0.0, f64::max);
+                    let concave = rise > 1e-9 * (vertices[triangles[nb as usize][0] as usize] - a).norm().max(1.0);
+                    if !(n.dot(&m) >= cos_min || concave) {
+                        bits |= 1 << e;
+                    }
+                }
+                for v in 0..3 {
+                    let around = self.triangles_around(triangles[t][v]);
+                    if !around.iter().all(|&o| n.dot(&normal(o as usize)).abs() >= cos_min) {
+                        bits |= 8 << v;
+                    }
+                }
+                ActiveFeatures(bits)
+            })
+            .collect()
     }
 
     /// Every triangle that has the (welded) vertex `vertex` as a corner, in

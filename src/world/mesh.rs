@@ -1,7 +1,7 @@
 //! The validated mesh (`f64`) and its conversion into a backend.
 
 use super::obj::parse_obj;
-use super::{Aabb, Adjacency, Bvh};
+use super::{Aabb, ActiveFeatures, Adjacency, Bvh};
 use crate::geom::{Triangle, Vec3, from_f64};
 use crate::{Error, Real};
 use nalgebra::Vector3;
@@ -20,10 +20,15 @@ pub struct TriangleMesh {
     vertices: Vec<Vector3<f64>>,
     triangles: Vec<[u32; 3]>,
     adjacency: Adjacency,
+    active: Vec<ActiveFeatures>,
     bvh: Bvh,
     bounds: Aabb,
     skipped: Vec<Error>,
 }
+
+/// Default largest angle between two triangles' normals for their shared
+/// edge to count as internal (see [`Adjacency::active_features`]): 5 degrees.
+pub const INTERNAL_EDGE_DEGREES: f64 = 5.0;
 
 impl TriangleMesh {
     /// A mesh from vertex positions and triangles (indices into
@@ -120,8 +125,11 @@ impl TriangleMesh {
             .collect();
         let mut bounds = Aabb::empty();
         boxes.iter().for_each(|b| bounds.merge(b));
+        let adjacency = Adjacency::build(&vertices, &kept);
+        let active = adjacency.active_features(&vertices, &kept, INTERNAL_EDGE_DEGREES.to_radians().cos());
         let mesh = TriangleMesh {
-            adjacency: Adjacency::build(&vertices, &kept),
+            adjacency,
+            active,
             bvh: Bvh::build(&boxes),
             vertices,
             triangles: kept,
@@ -165,6 +173,21 @@ impl TriangleMesh {
     #[must_use]
     pub fn adjacency(&self) -> &Adjacency {
         &self.adjacency
+    }
+
+    /// The active edges and vertices of triangle `t`.
+    #[must_use]
+    pub fn active(&self, t: u32) -> ActiveFeatures {
+        self.active[t as usize]
+    }
+
+    /// The mesh with its internal edges recomputed for another angle
+    /// threshold (degrees; the default is [`INTERNAL_EDGE_DEGREES`]). Zero
+    /// makes only exactly coplanar and concave edges internal.
+    #[must_use]
+    pub fn with_internal_edge_angle(mut self, degrees: f64) -> Self {
+        self.active = self.adjacency.active_features(&self.vertices, &self.triangles, degrees.to_radians().cos());
+        self
     }
 
     /// The bounding-volume hierarchy.

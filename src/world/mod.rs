@@ -12,7 +12,7 @@ mod bvh;
 mod mesh;
 mod obj;
 
-pub use adjacency::Adjacency;
+pub use adjacency::{ActiveFeatures, Adjacency};
 pub use bvh::{Aabb, Bvh};
-pub use mesh::{TriangleMesh, World};
+pub use mesh::{INTERNAL_EDGE_DEGREES, TriangleMesh, World};
 pub use obj::parse_obj;
