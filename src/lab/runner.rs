@@ -3,7 +3,7 @@
 use super::metrics::{jitter, penetration, snag_ratio};
 use super::scenes::{Scene, Steering};
 use crate::detect::Detection;
-use crate::geom::{Ellipsoid, Feature, Vec3, vec3};
+use crate::geom::{Ellipsoid, Feature, Vec3, to_f64, vec3};
 use crate::real::{MpfrDyn, with_precision};
 use crate::respond::{Move, MoveOptions, Response, StopReason, move_body};
 use crate::world::World;
@@ -125,6 +125,11 @@ pub struct RunResult {
     /// differ from the same frame replayed in `Mpfr<256>` from the same
     /// start.
     pub decision_flips: usize,
+    /// Frames whose sliding constraints differ from that replay: another
+    /// number of contacts, or a contact normal more than 1e-3 rad away. Ties
+    /// between coplanar triangles (a touch exactly on a shared edge) count
+    /// in `decision_flips` but not here.
+    pub plane_flips: usize,
     /// Position after the last frame.
     pub final_position: [f64; 3],
     /// Snag ratio where the scene has an ideal slide (1 = no snag).
@@ -164,6 +169,16 @@ fn decisions<T: Real>(m: &Move<T>) -> Vec<(u32, Feature)> {
     m.trace.contacts.iter().map(|c| (c.hit.triangle, c.hit.feature)).collect()
 }
 
+/// Whether two moves met different sliding constraints: another number of
+/// contacts, or normals more than `1e-3` rad apart (compared in `f64`).
+fn planes_differ<T: Real, U: Real>(a: &Move<T>, b: &Move<U>) -> bool {
+    a.trace.contacts.len() != b.trace.contacts.len()
+        || a.trace.contacts.iter().zip(&b.trace.contacts).any(|(x, y)| {
+            let (n, m) = (to_f64(&x.plane_normal), to_f64(&y.plane_normal));
+            !((n - m).norm() <= 1e-3)
+        })
+}
+
 fn to_reference<T: Real>(v: &Vec3<T>) -> Vec3<Mpfr<REFERENCE_BITS>> {
     v.map(|x| Mpfr::from_rug(&x.to_rug()))
 }
@@ -194,7 +209,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let mut records = Vec::with_capacity(frames);
     let (mut ns, mut iterations_sum, mut max_iterations) = (0u128, 0u64, 0u32);
     let (mut penetrating, mut first_pen, mut max_pen) = (0usize, None, 0.0f64);
-    let (mut capped, mut flips, mut nan_frames) = (0usize, 0usize, 0usize);
+    let (mut capped, mut flips, mut plane_flips, mut nan_frames) = (0usize, 0usize, 0usize, 0usize);
     let mut moves = 0usize;
     for k in 0..frames {
         let v = steering.next(scene);
@@ -215,6 +230,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         )?;
         let flip = decisions(&m) != decisions(&replay);
         flips += usize::from(flip);
+        plane_flips += usize::from(planes_differ(&m, &replay));
         iterations_sum += u64::from(m.trace.iterations);
         max_iterations = max_iterations.max(m.trace.iterations);
         capped += usize::from(is_capped(m.trace.stop));
@@ -259,6 +275,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         capped_frames: capped,
         nan_frames,
         decision_flips: flips,
+        plane_flips,
         final_position: [0, 1, 2].map(|i| p[i].to_f64()),
         snag: scene.ideal.and_then(|ideal| snag_ratio(&start, &p, ideal, frames)),
         ns_per_move: ns as f64 / moves.max(1) as f64,
