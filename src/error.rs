@@ -36,8 +36,9 @@ pub enum Error {
         /// How many vertices there are.
         vertex_count: usize,
     },
-    /// A mesh without any triangle.
-    #[error("the mesh has no triangles")]
+    /// A mesh without any valid triangle (the skipped ones, if any, are
+    /// reported by the lenient constructors' callers).
+    #[error("the mesh has no valid triangle")]
     EmptyMesh,
     /// A radius that is zero, negative, NaN or infinite.
     #[error("radius along {axis} must be positive and finite, got {value}")]

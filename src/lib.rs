@@ -14,6 +14,9 @@
 //! (2005) for closest points; Higham, *Accuracy and Stability of Numerical
 //! Algorithms* (2002) for the error bounds quoted in the docs.
 #![warn(missing_docs)]
+// Comparisons are written `!(a > b)` on purpose wherever a NaN must take the
+// rejecting branch; clippy's suggested rewrite would change that.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod detect;
 pub mod error;
@@ -21,6 +24,8 @@ pub mod geom;
 #[cfg(feature = "lab")]
 pub mod lab;
 pub mod real;
+#[cfg(feature = "cli")]
+pub mod report;
 pub mod respond;
 pub mod world;
 

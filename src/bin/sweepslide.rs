@@ -27,6 +27,39 @@ enum Command {
     Run(RunArgs),
     /// List the built-in scenes.
     Scenes,
+    /// Run the experiment matrix (or one shard of it) and write the report.
+    Report(ReportArgs),
+    /// Combine shard directories into one report.
+    Merge {
+        /// Output directory of the merged report.
+        out: PathBuf,
+        /// Shard directories (each written by `report --shard K/N`).
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+    },
+}
+
+#[derive(clap::Args)]
+struct ReportArgs {
+    /// The quick matrix (fewer frames, seeds and dial steps; under 3 minutes on 2 cores).
+    #[arg(long)]
+    quick: bool,
+    /// Output directory.
+    #[arg(long, default_value = "report")]
+    out: PathBuf,
+    /// Worker threads (default: one per core).
+    #[arg(long, default_value_t = 0)]
+    jobs: usize,
+    /// Directory of OBJ meshes to add as scenes (default: ../shared/meshes when it exists).
+    #[arg(long)]
+    meshes: Option<PathBuf>,
+    /// Run only the K-th of N slices of the matrix (1-based), e.g. 2/8; merge the shards with `sweepslide merge`.
+    #[arg(long, value_parser = parse_shard)]
+    shard: Option<(usize, usize)>,
+}
+
+fn parse_shard(s: &str) -> Result<(usize, usize), String> {
+    sweepslide::report::matrix::parse_shard(s).map_err(|e| e.to_string())
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -224,13 +257,91 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
             r.max_iterations, r.mean_iterations, r.capped_frames
         );
         println!("  NaN frames    {}", r.nan_frames);
-        println!("  decision flips vs mpfr256: {}", r.decision_flips);
+        println!(
+            "  decision flips vs mpfr256: {} ({} with a different sliding plane)",
+            r.decision_flips, r.plane_flips
+        );
         if let Some(s) = r.snag {
             println!("  snag ratio    {s:.6} (1 = ideal slide)");
         }
         println!("  final position {:?}", r.final_position);
         println!("  time per move  {:.0} ns (includes no metric)", r.ns_per_move);
     }
+    Ok(())
+}
+
+fn report_command(args: &ReportArgs) -> Result<(), Failure> {
+    use std::io::IsTerminal;
+    use sweepslide::report::{Runs, matrix, render, run_entries, write_runs};
+    let meshes = match &args.meshes {
+        Some(dir) if !dir.is_dir() => {
+            return Err(Failure(Error::InvalidArgument {
+                what: "--meshes".into(),
+                message: format!("{} is not a directory", dir.display()),
+            }));
+        }
+        Some(dir) => matrix::meshes_in(dir),
+        None => matrix::meshes_in(std::path::Path::new("../shared/meshes")),
+    };
+    let (info, entries) = matrix::matrix(args.quick, &meshes);
+    let entries = match args.shard {
+        Some((k, n)) => matrix::shard(entries, k, n)?,
+        None => entries,
+    };
+    let total = entries.len();
+    eprintln!(
+        "sweepslide report: {} runs{} ({} meshes), output in {}",
+        total,
+        args.shard.map_or(String::new(), |(k, n)| format!(" of shard {k}/{n}")),
+        meshes.len(),
+        args.out.display()
+    );
+    let clock = std::time::Instant::now();
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let bar = indicatif::ProgressBar::new(total as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs, eta {eta}")
+                .expect("static template")
+                .progress_chars("=> "),
+        );
+        bar
+    });
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let records = run_entries(&entries, args.jobs, &|| {
+        let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        match &bar {
+            Some(b) => b.inc(1),
+            None if n % 50 == 0 || n == total => {
+                eprintln!("  {n}/{total} runs done ({:.0} s)", clock.elapsed().as_secs_f64())
+            }
+            None => {}
+        }
+    })?;
+    if let Some(b) = bar {
+        b.finish();
+    }
+    let runs = Runs { info, records };
+    write_runs(&args.out, &runs)?;
+    if args.shard.is_some() {
+        eprintln!(
+            "shard written to {}/runs.json; combine the shards with `sweepslide merge OUT DIR...`",
+            args.out.display()
+        );
+        return Ok(());
+    }
+    let elapsed = clock.elapsed().as_secs_f64();
+    render(&args.out, &runs, Some(elapsed))?;
+    eprintln!("report written to {}/index.html in {elapsed:.0} s", args.out.display());
+    Ok(())
+}
+
+fn merge_command(out: &PathBuf, shards: &[PathBuf]) -> Result<(), Failure> {
+    use sweepslide::report::{merge, read_runs, render, write_runs};
+    let parts = shards.iter().map(|d| read_runs(d)).collect::<Result<Vec<_>, _>>()?;
+    let runs = merge(parts)?;
+    write_runs(out, &runs)?;
+    render(out, &runs, None)?;
+    eprintln!("merged {} shards ({} runs) into {}/index.html", shards.len(), runs.records.len(), out.display());
     Ok(())
 }
 
@@ -245,6 +356,8 @@ fn main() -> ExitCode {
             }
             Ok(())
         }
+        Command::Report(args) => report_command(args),
+        Command::Merge { out, shards } => merge_command(out, shards),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -39,10 +39,11 @@ impl TriangleMesh {
     /// [`Error::DegenerateTriangle`] naming the first bad triangle, or
     /// [`Error::EmptyMesh`].
     pub fn new(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
-        let (mesh, mut skipped) = Self::build(vertices, triangles, |_, e| e)?;
-        match skipped.is_empty() {
-            true => Ok(mesh),
-            false => Err(skipped.swap_remove(0)),
+        let (mesh, mut skipped) = Self::build(vertices, triangles, |_, e| e);
+        match (mesh, skipped.is_empty()) {
+            (Some(mesh), true) => Ok(mesh),
+            (None, true) => Err(Error::EmptyMesh),
+            (_, false) => Err(skipped.swap_remove(0)),
         }
     }
 
@@ -52,7 +53,8 @@ impl TriangleMesh {
     /// # Errors
     /// [`Error::EmptyMesh`] when no valid triangle remains.
     pub fn new_skipping_invalid(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
-        let (mut mesh, skipped) = Self::build(vertices, triangles, |_, e| e)?;
+        let (mesh, skipped) = Self::build(vertices, triangles, |_, e| e);
+        let mut mesh = mesh.ok_or(Error::EmptyMesh)?;
         mesh.skipped = skipped;
         Ok(mesh)
     }
@@ -78,22 +80,24 @@ impl TriangleMesh {
     pub fn from_obj_str(text: &str, path: &Path) -> Result<Self, Error> {
         let obj = parse_obj(text, path)?;
         let lines = obj.lines;
-        let (mut mesh, skipped) = Self::build(obj.vertices, obj.triangles, |t, e| Error::Obj {
+        let (mesh, skipped) = Self::build(obj.vertices, obj.triangles, |t, e| Error::Obj {
             path: path.to_path_buf(),
             line: lines[t],
             message: e.to_string(),
-        })?;
+        });
+        let mut mesh = mesh.ok_or(Error::EmptyMesh)?;
         mesh.skipped = skipped;
         Ok(mesh)
     }
 
     /// Validates and indexes; invalid triangles go to the returned list
-    /// (mapped through `report`, which gets the input index).
+    /// (mapped through `report`, which gets the input index). No mesh when
+    /// no triangle is valid.
     fn build(
         vertices: Vec<[f64; 3]>,
         triangles: Vec<[u32; 3]>,
         report: impl Fn(usize, Error) -> Error,
-    ) -> Result<(Self, Vec<Error>), Error> {
+    ) -> (Option<Self>, Vec<Error>) {
         let vertices: Vec<Vector3<f64>> = vertices.into_iter().map(Vector3::from).collect();
         let mut kept = Vec::with_capacity(triangles.len());
         let mut skipped = Vec::new();
@@ -113,7 +117,7 @@ impl TriangleMesh {
             }
         }
         if kept.is_empty() {
-            return Err(skipped.into_iter().next().unwrap_or(Error::EmptyMesh));
+            return (None, skipped);
         }
         let boxes: Vec<Aabb> = kept
             .iter()
@@ -136,7 +140,7 @@ impl TriangleMesh {
             bounds,
             skipped: Vec::new(),
         };
-        Ok((mesh, skipped))
+        (Some(mesh), skipped)
     }
 
     /// The vertex positions.
@@ -206,17 +210,6 @@ impl TriangleMesh {
     #[must_use]
     pub fn skipped(&self) -> &[Error] {
         &self.skipped
-    }
-
-    /// The mesh translated by `offset` (every vertex; the rounding of each
-    /// sum is the caller's to accept).
-    #[must_use]
-    pub fn translated(&self, offset: &Vector3<f64>) -> Self {
-        let vertices = self.vertices.iter().map(|v| (v + offset).into()).collect();
-        let (mut mesh, skipped) =
-            Self::build(vertices, self.triangles.clone(), |_, e| e).expect("translation of a valid mesh");
-        mesh.skipped = self.skipped.iter().cloned().chain(skipped).collect();
-        mesh
     }
 }
 

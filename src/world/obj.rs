@@ -48,14 +48,14 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
                         format!("vertex needs 3 coordinates (optionally a weight), found {}", coords.len()),
                     ));
                 }
-                let mut v = [0.0; 3];
+                let mut v = [0.0; 4];
                 for (slot, word) in v.iter_mut().zip(&coords) {
                     *slot = word.parse::<f64>().map_err(|_| err(line, format!("`{word}` is not a number")))?;
                     if !slot.is_finite() {
                         return Err(err(line, format!("vertex coordinate `{word}` is not finite")));
                     }
                 }
-                data.vertices.push(v);
+                data.vertices.push([v[0], v[1], v[2]]);
             }
             "f" => {
                 let mut corners = Vec::with_capacity(4);

@@ -1,0 +1,187 @@
+//! The error-analysis report: runs the experiment matrix (or a shard of
+//! it), and renders `index.html`, `results.json`, `results.csv` and the
+//! plots from the runs.
+//!
+//! Every output directory also gets `runs.json`: the matrix's identity and
+//! each run's entry, metrics and (for the runs the plots need) frames. A
+//! shard's directory holds only `runs.json`; [`merge`] reads several and
+//! renders exactly what one unsharded run renders (timings aside).
+
+pub mod claims;
+pub mod html;
+pub mod matrix;
+pub mod plots;
+
+use crate::Error;
+use crate::lab::{FrameRecord, RunResult, run_all};
+use matrix::{Entry, Group, MatrixInfo, configs};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// One run of the matrix and what came of it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Record {
+    /// The run.
+    pub entry: Entry,
+    /// Its metrics, or why it failed.
+    pub outcome: Result<RunResult, String>,
+    /// Its frames, kept for the plots (main-table runs in `f32` and `f64`).
+    pub frames: Option<Vec<FrameRecord>>,
+}
+
+/// The contents of `runs.json`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Runs {
+    /// Which matrix these runs belong to.
+    pub info: MatrixInfo,
+    /// The runs, by increasing index.
+    pub records: Vec<Record>,
+}
+
+fn io(path: &Path, e: impl std::fmt::Display) -> Error {
+    Error::Io { path: path.to_path_buf(), message: e.to_string() }
+}
+
+/// Runs `entries` on `jobs` threads, calling `progress` after each run.
+///
+/// # Errors
+/// Building a scene or loading a mesh can fail; a failing *run* is kept as
+/// a record with its error instead.
+pub fn run_entries(entries: &[Entry], jobs: usize, progress: &(dyn Fn() + Sync)) -> Result<Vec<Record>, Error> {
+    let configs = configs(entries)?;
+    let outputs = run_all(&configs, jobs, &|_| progress())?;
+    Ok(entries
+        .iter()
+        .zip(outputs)
+        .map(|(entry, out)| {
+            let keep_frames = entry.group == Group::Main && (entry.precision == "f32" || entry.precision == "f64");
+            match out {
+                Ok(o) => {
+                    Record { entry: entry.clone(), outcome: Ok(o.result), frames: keep_frames.then_some(o.frames) }
+                }
+                Err(e) => Record { entry: entry.clone(), outcome: Err(e.to_string()), frames: None },
+            }
+        })
+        .collect())
+}
+
+/// Writes `runs.json` into `dir` (created if needed).
+///
+/// # Errors
+/// [`Error::Io`] when the directory or file cannot be written.
+pub fn write_runs(dir: &Path, runs: &Runs) -> Result<(), Error> {
+    std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+    let path = dir.join("runs.json");
+    let text = serde_json::to_string(runs).map_err(|e| io(&path, e))?;
+    std::fs::write(&path, text).map_err(|e| io(&path, e))
+}
+
+/// Reads `runs.json` from `dir`.
+///
+/// # Errors
+/// [`Error::Io`] when it is missing or malformed.
+pub fn read_runs(dir: &Path) -> Result<Runs, Error> {
+    let path = dir.join("runs.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| io(&path, e))?;
+    serde_json::from_str(&text).map_err(|e| io(&path, e))
+}
+
+/// Combines shards into the whole matrix.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] when the shards belong to different matrices,
+/// overlap, or leave runs out.
+pub fn merge(shards: Vec<Runs>) -> Result<Runs, Error> {
+    let bad = |message: String| Error::InvalidArgument { what: "merge".into(), message };
+    let info = shards.first().map(|s| s.info.clone()).ok_or_else(|| bad("no shard given".into()))?;
+    if let Some(other) = shards.iter().find(|s| s.info != info) {
+        return Err(bad(format!("shards come from different matrices ({:?} and {:?})", info, other.info)));
+    }
+    let mut records: Vec<Record> = shards.into_iter().flat_map(|s| s.records).collect();
+    records.sort_by_key(|r| r.entry.index);
+    for (i, r) in records.iter().enumerate() {
+        if r.entry.index != i {
+            let what = if r.entry.index < i { "appears twice" } else { "is missing" };
+            return Err(bad(format!("run {} {what}", r.entry.index.min(i))));
+        }
+    }
+    if records.len() != info.runs {
+        return Err(bad(format!("{} of {} runs present", records.len(), info.runs)));
+    }
+    Ok(Runs { info, records })
+}
+
+/// One line of `results.json`: the run's metrics (the `sweepslide run
+/// --json` fields) plus where it sits in the matrix.
+#[derive(Serialize)]
+struct ResultLine<'a> {
+    index: usize,
+    group: Group,
+    #[serde(flatten)]
+    result: &'a RunResult,
+}
+
+/// Renders the whole report into `dir`: `results.json`, `results.csv`,
+/// `plots/*.svg` and `index.html`.
+///
+/// # Errors
+/// [`Error::Io`] when a file cannot be written.
+pub fn render(dir: &Path, runs: &Runs, elapsed_s: Option<f64>) -> Result<Vec<PathBuf>, Error> {
+    std::fs::create_dir_all(dir.join("plots")).map_err(|e| io(dir, e))?;
+    let ok: Vec<(&Record, &RunResult)> =
+        runs.records.iter().filter_map(|r| r.outcome.as_ref().ok().map(|o| (r, o))).collect();
+    let lines: Vec<ResultLine<'_>> =
+        ok.iter().map(|(r, o)| ResultLine { index: r.entry.index, group: r.entry.group, result: o }).collect();
+    let json_path = dir.join("results.json");
+    std::fs::write(&json_path, serde_json::to_string_pretty(&lines).map_err(|e| io(&json_path, e))?)
+        .map_err(|e| io(&json_path, e))?;
+    let csv_path = dir.join("results.csv");
+    std::fs::write(&csv_path, csv(&lines)).map_err(|e| io(&csv_path, e))?;
+    let figures = plots::figures(runs);
+    let mut written = vec![json_path, csv_path];
+    for f in &figures {
+        let path = dir.join("plots").join(format!("{}.svg", f.name));
+        std::fs::write(&path, &f.svg).map_err(|e| io(&path, e))?;
+        written.push(path);
+    }
+    let html_path = dir.join("index.html");
+    std::fs::write(&html_path, html::page(runs, &figures, elapsed_s)).map_err(|e| io(&html_path, e))?;
+    written.push(html_path);
+    Ok(written)
+}
+
+fn csv(lines: &[ResultLine<'_>]) -> String {
+    let mut out = String::from(
+        "index,group,scene,response,detection,precision,seed,frames,max_penetration,penetrating_frames,jitter,max_iterations,mean_iterations,capped_frames,nan_frames,decision_flips,plane_flips,snag,final_x,final_y,final_z,ns_per_move\n",
+    );
+    for l in lines {
+        let r = l.result;
+        let group = match l.group {
+            Group::Main => "main",
+            Group::Dial => "dial",
+        };
+        let snag = r.snag.map_or(String::new(), |s| format!("{s:e}"));
+        let [x, y, z] = r.final_position;
+        out += &format!(
+            "{},{group},\"{}\",{},{},{},{},{},{:e},{},{:e},{},{},{},{},{},{},{snag},{x:e},{y:e},{z:e},{:.1}\n",
+            l.index,
+            r.scene,
+            r.response,
+            r.detection,
+            r.precision,
+            r.seed,
+            r.frames,
+            r.max_penetration,
+            r.penetrating_frames,
+            r.jitter,
+            r.max_iterations,
+            r.mean_iterations,
+            r.capped_frames,
+            r.nan_frames,
+            r.decision_flips,
+            r.plane_flips,
+            r.ns_per_move
+        );
+    }
+    out
+}

@@ -1,0 +1,328 @@
+//! The report's figures, drawn as SVG with `plotters` (no fonts or network
+//! needed: text is SVG text).
+
+use super::matrix::{DIAL_SCENES, Group, SceneSource};
+use super::{Record, Runs};
+use crate::lab::{FrameRecord, RunResult};
+use plotters::prelude::*;
+
+/// One figure.
+#[derive(Clone, Debug)]
+pub struct Figure {
+    /// File stem (`plots/<name>.svg`).
+    pub name: String,
+    /// Title shown above it.
+    pub title: String,
+    /// What it shows, in a sentence.
+    pub caption: String,
+    /// Scene it belongs to, or `None` for the overview.
+    pub scene: Option<String>,
+    /// The SVG document.
+    pub svg: String,
+}
+
+/// Values at or below this are drawn at this height on log axes (zero has
+/// no logarithm); captions say so.
+pub const LOG_FLOOR: f64 = 1e-18;
+
+const RESPONSES: [&str; 3] = ["fauerby", "linahan", "robust"];
+
+fn colour(response: &str) -> RGBColor {
+    match response {
+        "fauerby" => RGBColor(214, 39, 40),
+        "linahan" => RGBColor(31, 119, 180),
+        _ => RGBColor(44, 160, 44),
+    }
+}
+
+/// A named polyline.
+struct Series {
+    label: String,
+    colour: RGBColor,
+    points: Vec<(f64, f64)>,
+}
+
+fn bounds(series: &[Series], log_y: bool) -> ((f64, f64), (f64, f64)) {
+    let pts = series.iter().flat_map(|s| s.points.iter()).filter(|p| p.0.is_finite() && p.1.is_finite());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for &(x, y) in pts {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, if log_y { LOG_FLOOR } else { 0.0 }, 1.0);
+    }
+    let pad = |a: f64, b: f64| {
+        let d = if b > a { (b - a) * 0.05 } else { a.abs().max(1.0) * 0.05 };
+        (a - d, b + d)
+    };
+    let (x0, x1) = pad(x0, x1);
+    let (y0, y1) = if log_y { (y0.max(LOG_FLOOR) / 3.0, y1.max(LOG_FLOOR * 10.0) * 3.0) } else { pad(y0, y1) };
+    ((x0, x1), (y0, y1))
+}
+
+/// A line chart; with `equal` the axes share one scale (for trajectories).
+fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_y: bool, equal: bool) -> String {
+    let mut svg = String::new();
+    let ((mut x0, mut x1), (mut y0, mut y1)) = bounds(series, log_y);
+    if equal {
+        let (cx, cy, half) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0, ((x1 - x0).max(y1 - y0)) / 2.0);
+        (x0, x1, y0, y1) = (cx - half * 1.4, cx + half * 1.4, cy - half, cy + half);
+    }
+    {
+        let root = SVGBackend::with_string(&mut svg, (640, 420)).into_drawing_area();
+        let drawn: Result<(), Box<dyn std::error::Error>> = (|| {
+            root.fill(&WHITE)?;
+            let mut builder = ChartBuilder::on(&root);
+            builder.caption(title, ("sans-serif", 18)).margin(12).x_label_area_size(40).y_label_area_size(70);
+            if log_y {
+                let mut chart = builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?;
+                chart
+                    .configure_mesh()
+                    .x_desc(x_label)
+                    .y_desc(y_label)
+                    .y_label_formatter(&|v| format!("{v:.0e}"))
+                    .draw()?;
+                draw_series(&mut chart, series, |y| y.max(LOG_FLOOR))?;
+            } else {
+                let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
+                chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw()?;
+                draw_series(&mut chart, series, |y| y)?;
+            }
+            root.present()?;
+            Ok(())
+        })();
+        if let Err(e) = drawn {
+            return format!(
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"40\"><text x=\"10\" y=\"25\">plot failed: {}</text></svg>",
+                html_escape(&e.to_string())
+            );
+        }
+    }
+    svg
+}
+
+fn draw_series<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    series: &[Series],
+    map_y: impl Fn(f64) -> f64,
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    DB::ErrorType: 'static,
+{
+    for s in series {
+        let pts: Vec<(f64, f64)> =
+            s.points.iter().map(|&(x, y)| (x, map_y(y))).filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
+        let c = s.colour;
+        chart
+            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))?
+            .label(s.label.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
+        if pts.len() <= 40 {
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+        }
+    }
+    if !series.is_empty() {
+        chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+    }
+    Ok(())
+}
+
+/// Escapes text for HTML and SVG.
+#[must_use]
+pub fn html_escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+fn slug(s: &str) -> String {
+    s.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '-' }).collect()
+}
+
+fn main_runs<'a>(
+    runs: &'a Runs,
+    precision: &'a str,
+) -> impl Iterator<Item = (&'a Record, &'a RunResult, &'a [FrameRecord])> + 'a {
+    runs.records.iter().filter_map(move |r| {
+        let o = r.outcome.as_ref().ok()?;
+        let frames = r.frames.as_deref()?;
+        (r.entry.group == Group::Main && r.entry.precision == precision && r.entry.seed == 1).then_some((r, o, frames))
+    })
+}
+
+/// The scene names of the main table, in matrix order.
+#[must_use]
+pub fn scene_names(runs: &Runs) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for r in &runs.records {
+        if let (Group::Main, Ok(o)) = (r.entry.group, &r.outcome) {
+            if !names.contains(&o.scene) {
+                names.push(o.scene.clone());
+            }
+        }
+    }
+    names
+}
+
+fn trajectory(scene: &str, runs: &Runs, axes: (usize, usize)) -> Vec<Series> {
+    main_runs(runs, "f32")
+        .filter(|(_, o, _)| o.scene == scene)
+        .map(|(_, o, frames)| Series {
+            label: o.response.clone(),
+            colour: colour(&o.response),
+            points: frames.iter().map(|f| (f.position[axes.0], f.position[axes.1])).collect(),
+        })
+        .collect()
+}
+
+/// Every figure of the report.
+#[must_use]
+pub fn figures(runs: &Runs) -> Vec<Figure> {
+    let mut out = Vec::new();
+    let names = scene_names(runs);
+    // Trajectories in the paper's scenes, side and top views.
+    for base in DIAL_SCENES {
+        let Some(scene) = names.iter().find(|n| n.split(':').next() == Some(base) && !n.contains('@')) else {
+            continue;
+        };
+        for (view, axes, labels) in [("side", (0, 1), ("x", "y")), ("top", (0, 2), ("x", "z"))] {
+            out.push(Figure {
+                name: format!("trajectory-{}-{view}", slug(scene)),
+                title: format!("{scene}: trajectories, {view} view (f32)"),
+                caption: format!(
+                    "Centre of the body every frame, {} against {}, for each response in f32.",
+                    labels.0, labels.1
+                ),
+                scene: None,
+                svg: line_chart(
+                    &format!("{scene}, {view} view (f32)"),
+                    labels.0,
+                    labels.1,
+                    &trajectory(scene, runs, axes),
+                    false,
+                    true,
+                ),
+            });
+        }
+    }
+    // Penetration over frames: the worst runs.
+    let mut worst: Vec<(&Record, &RunResult, &[FrameRecord])> =
+        main_runs(runs, "f32").chain(main_runs(runs, "f64")).filter(|(_, o, _)| o.penetrating_frames > 0).collect();
+    worst.sort_by(|a, b| {
+        b.1.max_penetration.total_cmp(&a.1.max_penetration).then(a.0.entry.index.cmp(&b.0.entry.index))
+    });
+    let palette = [
+        RGBColor(214, 39, 40),
+        RGBColor(31, 119, 180),
+        RGBColor(255, 127, 14),
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+        RGBColor(23, 190, 207),
+    ];
+    let series: Vec<Series> = worst
+        .iter()
+        .take(6)
+        .zip(palette)
+        .map(|((_, o, frames), colour)| Series {
+            label: format!("{} {} {}", o.scene, o.response, o.precision),
+            colour,
+            points: frames.iter().map(|f| (f.frame as f64, f.penetration.unwrap_or(0.0).max(0.0))).collect(),
+        })
+        .collect();
+    out.push(Figure {
+        name: "penetration-over-frames".into(),
+        title: "Penetration depth over frames (worst runs)".into(),
+        caption: if series.is_empty() {
+            "No run in f32 or f64 penetrated the geometry.".into()
+        } else {
+            format!("Exact penetration (MPFR, 512 bits) after each frame for the {} most penetrating runs in f32/f64; non-penetrating frames are drawn at {LOG_FLOOR:.0e}.", series.len())
+        },
+        scene: None,
+        svg: line_chart("Penetration over frames", "frame", "penetration", &series, true, false),
+    });
+    // The precision dial.
+    for base in DIAL_SCENES {
+        for (metric, pick) in [("jitter", 0usize), ("penetration", 1usize)] {
+            let series: Vec<Series> = RESPONSES
+                .iter()
+                .map(|resp| {
+                    let mut points: Vec<(f64, f64)> = runs
+                        .records
+                        .iter()
+                        .filter(|r| r.entry.group == Group::Dial && r.entry.response.name() == *resp)
+                        .filter(|r| matches!(&r.entry.source, SceneSource::Builtin { spec, .. } if spec == base))
+                        .filter_map(|r| {
+                            let o = r.outcome.as_ref().ok()?;
+                            let bits: f64 = o.precision.trim_start_matches("mpfr").parse().ok()?;
+                            Some((bits, if pick == 0 { o.jitter } else { o.max_penetration }))
+                        })
+                        .collect();
+                    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    Series { label: resp.to_string(), colour: colour(resp), points }
+                })
+                .collect();
+            out.push(Figure {
+                name: format!("dial-{base}-{metric}"),
+                title: format!("Precision dial: {metric} in {base} against MPFR bits"),
+                caption: format!(
+                    "{metric} of each response in the {base} scene run in Mpfr<BITS>; zero is drawn at {LOG_FLOOR:.0e}."
+                ),
+                scene: None,
+                svg: line_chart(
+                    &format!("{base}: {metric} vs precision"),
+                    "significand bits",
+                    metric,
+                    &series,
+                    true,
+                    false,
+                ),
+            });
+        }
+    }
+    // Iterations histogram.
+    let series: Vec<Series> = RESPONSES
+        .iter()
+        .map(|resp| {
+            let mut counts = vec![0usize; 17];
+            for (_, o, frames) in main_runs(runs, "f32").filter(|(_, o, _)| o.response == *resp) {
+                let _ = o;
+                for f in frames {
+                    counts[(f.iterations as usize).min(16)] += 1;
+                }
+            }
+            let total = counts.iter().sum::<usize>().max(1) as f64;
+            Series {
+                label: resp.to_string(),
+                colour: colour(resp),
+                points: counts.iter().enumerate().map(|(i, &c)| (i as f64, c as f64 / total)).collect(),
+            }
+        })
+        .collect();
+    out.push(Figure {
+        name: "iterations-histogram".into(),
+        title: "Collision checks per frame".into(),
+        caption: "Share of frames (all main scenes, f32, seed 1) by the number of collision checks the frame needed; both passes (velocity and gravity) count.".into(),
+        scene: None,
+        svg: line_chart("Collision checks per frame (f32)", "checks per frame", "share of frames", &series, false, false),
+    });
+    // One top view per scene.
+    for scene in &names {
+        out.push(Figure {
+            name: format!("scene-{}-top", slug(scene)),
+            title: format!("{scene}: top view (f32)"),
+            caption: "Centre of the body every frame, seen from above (x against z), each response in f32, seed 1."
+                .into(),
+            scene: Some(scene.clone()),
+            svg: line_chart(
+                &format!("{scene}, top view (f32)"),
+                "x",
+                "z",
+                &trajectory(scene, runs, (0, 2)),
+                false,
+                true,
+            ),
+        });
+    }
+    out
+}
