@@ -1,0 +1,485 @@
+//! Every kind of bad input is reported with its specific `Error` variant
+//! (and the index, axis or line it concerns), never repaired silently.
+
+use std::path::Path;
+use sweepslide::Error;
+use sweepslide::detect::check_finite;
+use sweepslide::geom::{Ellipsoid, vec3};
+use sweepslide::world::TriangleMesh;
+
+/// A unit square in the z = 0 plane as two triangles.
+fn square() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    (vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]], vec![[0, 1, 2], [0, 2, 3]])
+}
+
+// ---------------------------------------------------------------------------
+// TriangleMesh::new
+// ---------------------------------------------------------------------------
+
+#[test]
+fn valid_mesh_is_accepted() {
+    let (v, t) = square();
+    let mesh = TriangleMesh::new(v, t).unwrap();
+    assert_eq!(mesh.len(), 2);
+    assert!(mesh.skipped().is_empty());
+}
+
+fn non_finite_vertex(bad: f64) {
+    let (mut v, t) = square();
+    v[2][1] = bad;
+    match TriangleMesh::new(v, t) {
+        Err(Error::NonFinite { what, value }) => {
+            assert!(value.to_bits() == bad.to_bits() || (value.is_nan() && bad.is_nan()), "value {value}");
+            assert!(what.contains("triangle 0"), "the first triangle using vertex 2 is named: {what}");
+        }
+        other => panic!("expected NonFinite for {bad}, got {other:?}"),
+    }
+}
+
+#[test]
+fn nan_vertex_coordinate_is_non_finite() {
+    non_finite_vertex(f64::NAN);
+}
+
+#[test]
+fn positive_infinite_vertex_coordinate_is_non_finite() {
+    non_finite_vertex(f64::INFINITY);
+}
+
+#[test]
+fn negative_infinite_vertex_coordinate_is_non_finite() {
+    non_finite_vertex(f64::NEG_INFINITY);
+}
+
+#[test]
+fn non_finite_vertex_only_in_second_triangle_names_it() {
+    let (mut v, t) = square();
+    v[3][0] = f64::NAN; // only triangle 1 uses vertex 3
+    match TriangleMesh::new(v, t) {
+        Err(Error::NonFinite { what, value }) => {
+            assert!(value.is_nan());
+            assert!(what.contains("triangle 1"), "{what}");
+        }
+        other => panic!("expected NonFinite, got {other:?}"),
+    }
+}
+
+#[test]
+fn coincident_vertices_are_a_degenerate_triangle() {
+    let (mut v, mut t) = square();
+    v.push([0.5, 0.5, 0.0]);
+    t.push([4, 4, 1]); // index 2: two corners are the same vertex
+    match TriangleMesh::new(v.clone(), t) {
+        Err(Error::DegenerateTriangle { index, reason }) => {
+            assert_eq!(index, 2);
+            assert!(reason.contains("coincide"), "{reason}");
+        }
+        other => panic!("expected DegenerateTriangle, got {other:?}"),
+    }
+    // Two distinct vertices at the same position.
+    v.push([0.5, 0.5, 0.0]);
+    let t = vec![[0, 1, 2], [4, 5, 0], [0, 2, 3]];
+    match TriangleMesh::new(v, t) {
+        Err(Error::DegenerateTriangle { index, reason }) => {
+            assert_eq!(index, 1);
+            assert!(reason.contains("coincide"), "{reason}");
+        }
+        other => panic!("expected DegenerateTriangle, got {other:?}"),
+    }
+}
+
+#[test]
+fn collinear_vertices_are_a_degenerate_triangle() {
+    let (mut v, mut t) = square();
+    v.extend([[0.0, 0.0, 5.0], [1.0, 2.0, 8.0], [3.0, 6.0, 14.0]]);
+    t.push([4, 5, 6]); // index 2
+    match TriangleMesh::new(v, t) {
+        Err(Error::DegenerateTriangle { index, reason }) => {
+            assert_eq!(index, 2);
+            assert!(reason.contains("collinear"), "{reason}");
+        }
+        other => panic!("expected DegenerateTriangle, got {other:?}"),
+    }
+}
+
+#[test]
+fn nearly_collinear_sliver_within_rounding_is_degenerate() {
+    // The third vertex is off the line by far less than the rounding noise.
+    let v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 1e-300, 0.0], [0.0, 1.0, 0.0]];
+    match TriangleMesh::new(v, vec![[0, 3, 1], [0, 1, 2]]) {
+        Err(Error::DegenerateTriangle { index: 1, .. }) => {}
+        other => panic!("expected DegenerateTriangle for triangle 1, got {other:?}"),
+    }
+}
+
+#[test]
+fn vertex_index_out_of_range() {
+    let (v, mut t) = square();
+    t.push([0, 2, 4]); // index 2; only 4 vertices
+    assert_eq!(
+        TriangleMesh::new(v, t).unwrap_err(),
+        Error::VertexIndexOutOfRange { triangle: 2, vertex: 4, vertex_count: 4 }
+    );
+    let (v, _) = square();
+    assert_eq!(
+        TriangleMesh::new(v, vec![[u32::MAX, 0, 1]]).unwrap_err(),
+        Error::VertexIndexOutOfRange { triangle: 0, vertex: u32::MAX as usize, vertex_count: 4 }
+    );
+}
+
+#[test]
+fn first_bad_triangle_is_reported() {
+    let (mut v, _) = square();
+    v.push([f64::NAN, 0.0, 0.0]);
+    let t = vec![[0, 1, 2], [0, 0, 1], [0, 1, 9], [0, 1, 4]];
+    match TriangleMesh::new(v, t) {
+        Err(Error::DegenerateTriangle { index: 1, .. }) => {}
+        other => panic!("expected DegenerateTriangle for triangle 1, got {other:?}"),
+    }
+}
+
+#[test]
+fn empty_mesh() {
+    assert_eq!(TriangleMesh::new(vec![], vec![]).unwrap_err(), Error::EmptyMesh);
+    let (v, _) = square();
+    assert_eq!(TriangleMesh::new(v.clone(), vec![]).unwrap_err(), Error::EmptyMesh);
+    assert_eq!(TriangleMesh::new_skipping_invalid(v, vec![]).unwrap_err(), Error::EmptyMesh);
+}
+
+#[test]
+fn new_skipping_invalid_keeps_valid_triangles_and_lists_skipped_ones() {
+    let (mut v, _) = square();
+    v.push([f64::INFINITY, 0.0, 0.0]); // vertex 4
+    v.push([2.0, 0.0, 0.0]); // vertex 5, collinear with 0 and 1
+    let t = vec![
+        [0, 1, 2], // 0 ok
+        [0, 0, 2], // 1 coincident
+        [0, 2, 3], // 2 ok
+        [0, 1, 7], // 3 out of range
+        [0, 1, 4], // 4 non-finite
+        [0, 1, 5], // 5 collinear
+    ];
+    let mesh = TriangleMesh::new_skipping_invalid(v, t).unwrap();
+    assert_eq!(mesh.triangles(), &[[0, 1, 2], [0, 2, 3]]);
+    assert_eq!(mesh.len(), 2);
+    let skipped = mesh.skipped();
+    assert_eq!(skipped.len(), 4, "{skipped:?}");
+    assert!(matches!(&skipped[0], Error::DegenerateTriangle { index: 1, .. }), "{:?}", skipped[0]);
+    assert_eq!(skipped[1], Error::VertexIndexOutOfRange { triangle: 3, vertex: 7, vertex_count: 6 });
+    assert!(
+        matches!(&skipped[2], Error::NonFinite { what, value } if what.contains("triangle 4") && *value == f64::INFINITY),
+        "{:?}",
+        skipped[2]
+    );
+    assert!(matches!(&skipped[3], Error::DegenerateTriangle { index: 5, .. }), "{:?}", skipped[3]);
+}
+
+/// The doc of `new_skipping_invalid` promises `EmptyMesh` "when no valid
+/// triangle remains".
+#[test]
+fn new_skipping_invalid_with_no_valid_triangle_is_empty_mesh() {
+    let (v, _) = square();
+    let result = TriangleMesh::new_skipping_invalid(v, vec![[0, 0, 1], [1, 2, 9]]);
+    assert_eq!(result.unwrap_err(), Error::EmptyMesh);
+}
+
+// ---------------------------------------------------------------------------
+// Ellipsoid radii
+// ---------------------------------------------------------------------------
+
+fn invalid_radius<T: sweepslide::Real>() {
+    let cases = [
+        ([0.0, 1.0, 1.0], 'x', 0.0),
+        ([1.0, -0.0, 1.0], 'y', -0.0),
+        ([1.0, 1.0, -2.0], 'z', -2.0),
+        ([f64::NAN, 1.0, 1.0], 'x', f64::NAN),
+        ([1.0, f64::INFINITY, 1.0], 'y', f64::INFINITY),
+        ([1.0, 1.0, f64::NEG_INFINITY], 'z', f64::NEG_INFINITY),
+        // The first bad axis is named.
+        ([1.0, 0.0, -1.0], 'y', 0.0),
+    ];
+    for (radii, axis, value) in cases {
+        match Ellipsoid::<T>::new(radii) {
+            Err(Error::InvalidRadius { axis: a, value: v }) => {
+                assert_eq!(a, axis, "{radii:?}");
+                assert!(v.to_bits() == value.to_bits() || (v.is_nan() && value.is_nan()), "{radii:?}: {v}");
+            }
+            other => panic!("{}: expected InvalidRadius for {radii:?}, got {other:?}", T::name()),
+        }
+    }
+    for (r, expected) in [(0.0, 0.0), (-1.0, -1.0), (f64::INFINITY, f64::INFINITY)] {
+        assert_eq!(Ellipsoid::<T>::sphere(r).unwrap_err(), Error::InvalidRadius { axis: 'x', value: expected });
+    }
+    assert!(matches!(
+        Ellipsoid::<T>::sphere(f64::NAN),
+        Err(Error::InvalidRadius { axis: 'x', value }) if value.is_nan()
+    ));
+    assert!(Ellipsoid::<T>::new([0.5, 1.0, 2.0]).is_ok());
+    assert!(Ellipsoid::<T>::sphere(1e-3).is_ok());
+}
+
+#[test]
+fn invalid_radius_f32() {
+    invalid_radius::<f32>();
+    // Radii that are fine in f64 but not in f32: underflow to 0, overflow to inf.
+    assert_eq!(Ellipsoid::<f32>::sphere(1e-50).unwrap_err(), Error::InvalidRadius { axis: 'x', value: 1e-50 });
+    assert_eq!(Ellipsoid::<f32>::new([1.0, 1.0, 1e40]).unwrap_err(), Error::InvalidRadius { axis: 'z', value: 1e40 });
+    assert!(Ellipsoid::<f64>::sphere(1e-50).is_ok());
+}
+
+#[test]
+fn invalid_radius_f64() {
+    invalid_radius::<f64>();
+}
+
+#[cfg(feature = "mpfr")]
+#[test]
+fn invalid_radius_mpfr() {
+    invalid_radius::<sweepslide::Mpfr<24>>();
+    invalid_radius::<sweepslide::Mpfr<113>>();
+}
+
+// ---------------------------------------------------------------------------
+// Precision
+// ---------------------------------------------------------------------------
+
+#[cfg(feature = "mpfr")]
+#[test]
+fn precision_out_of_range() {
+    use sweepslide::real::{MAX_BITS, MIN_BITS, with_precision};
+    for bits in [0, 1] {
+        let mut ran = false;
+        let result = with_precision(bits, || ran = true);
+        assert_eq!(result.unwrap_err(), Error::PrecisionOutOfRange { bits, min: MIN_BITS, max: MAX_BITS });
+        assert!(!ran, "the closure must not run for {bits} bits");
+    }
+    assert_eq!(MIN_BITS, 2);
+    if let Some(too_many) = MAX_BITS.checked_add(1) {
+        assert!(
+            matches!(with_precision(too_many, || ()), Err(Error::PrecisionOutOfRange { bits, .. }) if bits == too_many)
+        );
+    }
+    assert!(with_precision(MIN_BITS, || ()).is_ok());
+}
+
+// ---------------------------------------------------------------------------
+// detect::check_finite
+// ---------------------------------------------------------------------------
+
+fn check_finite_for<T: sweepslide::Real>() {
+    assert_eq!(check_finite("velocity", &vec3::<T>(1.0, -2.0, 3.0)), Ok(()));
+    assert_eq!(check_finite("velocity", &vec3::<T>(0.0, -0.0, 1e-30)), Ok(()));
+    match check_finite("velocity", &vec3::<T>(1.0, f64::NAN, 0.0)) {
+        Err(Error::NonFinite { what, value }) => {
+            assert_eq!(what, "velocity");
+            assert!(value.is_nan());
+        }
+        other => panic!("{}: expected NonFinite, got {other:?}", T::name()),
+    }
+    assert_eq!(
+        check_finite("position", &vec3::<T>(1.0, 2.0, f64::INFINITY)),
+        Err(Error::NonFinite { what: "position".into(), value: f64::INFINITY })
+    );
+    assert_eq!(
+        check_finite("gravity", &vec3::<T>(f64::NEG_INFINITY, 2.0, 0.0)),
+        Err(Error::NonFinite { what: "gravity".into(), value: f64::NEG_INFINITY })
+    );
+}
+
+#[test]
+fn check_finite_reports_non_finite() {
+    check_finite_for::<f32>();
+    check_finite_for::<f64>();
+    #[cfg(feature = "mpfr")]
+    check_finite_for::<sweepslide::Mpfr<53>>();
+    // A value that overflows f32 only.
+    assert!(check_finite("p", &vec3::<f64>(1e300, 0.0, 0.0)).is_ok());
+    assert_eq!(
+        check_finite("p", &vec3::<f32>(1e300, 0.0, 0.0)),
+        Err(Error::NonFinite { what: "p".into(), value: f64::INFINITY })
+    );
+}
+
+// ---------------------------------------------------------------------------
+// OBJ
+// ---------------------------------------------------------------------------
+
+const V4: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+
+/// Parses `text` and asserts an `Error::Obj` on `line` whose message
+/// contains `needle`.
+#[track_caller]
+fn obj_error(text: &str, line: usize, needle: &str) {
+    match TriangleMesh::from_obj_str(text, Path::new("x.obj")) {
+        Err(Error::Obj { path, line: l, message }) => {
+            assert_eq!(path, Path::new("x.obj"));
+            assert_eq!(l, line, "wrong line for {text:?}: {message}");
+            assert!(message.contains(needle), "message {message:?} lacks {needle:?}");
+        }
+        other => panic!("expected Error::Obj at line {line} for {text:?}, got {other:?}"),
+    }
+}
+
+#[test]
+fn obj_bad_number() {
+    obj_error(&format!("{V4}v 1 x 2\nf 1 2 3\n"), 5, "`x` is not a number");
+    obj_error("# header\n\nv 1.0 2.0 3.0.0\n", 3, "not a number");
+}
+
+/// The optional fourth value of `v` (the weight) is a number too.
+#[test]
+fn obj_bad_vertex_weight_is_a_bad_number() {
+    obj_error(&format!("{V4}v 1 2 3 w\nf 1 2 3\n"), 5, "not a number");
+}
+
+#[test]
+fn obj_too_few_vertex_coordinates() {
+    obj_error(&format!("{V4}f 1 2 3\nv 1 2\n"), 6, "found 2");
+    obj_error("v\n", 1, "found 0");
+    obj_error("v 1 2 3 4 5\n", 1, "found 5");
+}
+
+#[test]
+fn obj_face_with_fewer_than_three_vertices() {
+    obj_error(&format!("{V4}f 1 2\n"), 5, "at least 3");
+    obj_error(&format!("{V4}\n\nf\n"), 7, "found 0");
+}
+
+#[test]
+fn obj_index_zero() {
+    obj_error(&format!("{V4}f 1 2 3\nf 0 1 2\n"), 6, "index 0");
+    obj_error(&format!("{V4}f 1/1 0/1 2/1\n"), 5, "index 0");
+}
+
+#[test]
+fn obj_index_out_of_range_positive() {
+    obj_error(&format!("{V4}f 1 2 5\n"), 5, "out of range");
+    // Forward references are out of range too (only vertices read so far).
+    obj_error(&format!("v 0 0 0\nv 1 0 0\nf 1 2 3\n{V4}"), 3, "out of range");
+}
+
+#[test]
+fn obj_index_out_of_range_negative() {
+    obj_error(&format!("{V4}f -1 -2 -5\n"), 5, "out of range");
+    obj_error(&format!("{V4}f -1 -2 -3\nf -5//1 -1//1 -2//1\n"), 6, "out of range");
+}
+
+#[test]
+fn obj_non_numeric_index() {
+    obj_error(&format!("{V4}f 1 two 3\n"), 5, "not a vertex index");
+    obj_error(&format!("{V4}f 1 2 /3\n"), 5, "not a vertex index");
+    obj_error(&format!("{V4}f 1 2 3.0\n"), 5, "not a vertex index");
+}
+
+#[test]
+fn obj_line_and_point_elements() {
+    obj_error(&format!("{V4}f 1 2 3\nl 1 2\n"), 6, "`l`");
+    obj_error(&format!("{V4}p 1\nf 1 2 3\n"), 5, "`p`");
+}
+
+#[test]
+fn obj_unknown_statement() {
+    obj_error(&format!("{V4}f 1 2 3\nbogus 1 2 3\n"), 6, "unknown statement `bogus`");
+    obj_error("V 0 0 0\n", 1, "unknown statement `V`");
+}
+
+#[test]
+fn obj_non_finite_coordinate() {
+    obj_error(&format!("{V4}v 1 inf 2\n"), 5, "not finite");
+    obj_error(&format!("{V4}v 1 2 NaN\n"), 5, "not finite");
+    obj_error("v -infinity 0 0\n", 1, "not finite");
+    // Overflowing decimal literals parse to infinity and are rejected too.
+    obj_error("v 1e400 0 0\n", 1, "not finite");
+}
+
+#[test]
+fn obj_error_line_numbers_count_blank_and_comment_lines() {
+    let text = "# a comment\n\n   \nv 0 0 0 # trailing comment\nv 1 0 0\r\nv 0 1 0\n\nf 1 2 3\nf 1 2 4\n";
+    obj_error(text, 9, "out of range");
+}
+
+#[test]
+fn obj_missing_file_is_io_error() {
+    let path = Path::new("/nonexistent-sweepslide-dir/missing.obj");
+    match TriangleMesh::from_obj_file(path) {
+        Err(Error::Io { path: p, message }) => {
+            assert_eq!(p, path);
+            assert!(!message.is_empty());
+        }
+        other => panic!("expected Error::Io, got {other:?}"),
+    }
+}
+
+#[test]
+fn obj_empty_file_is_empty_mesh() {
+    let r = TriangleMesh::from_obj_str("", Path::new("x.obj"));
+    assert_eq!(r.unwrap_err(), Error::EmptyMesh);
+    let r = TriangleMesh::from_obj_str(&format!("# only vertices\n{V4}vn 0 0 1\n"), Path::new("x.obj"));
+    assert_eq!(r.unwrap_err(), Error::EmptyMesh);
+}
+
+#[test]
+fn obj_valid_file_parses_to_expected_triangles() {
+    let text = "\
+# a quad, a pentagon, and every face-corner form
+mtllib scene.mtl
+o thing
+g group
+s off
+usemtl stone
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0   # weightless
+v 0.5 2 0 1.0
+vt 0 0
+vt 1 0
+vt 1 1
+vn 0 0 1
+f 1 2 3 4
+f 1/1 2/2 3/3
+f 1/1/1 2/2/1 3/3/1
+f 1//1 2//1 3//1
+f -5 -4 -3 -1 -2
+f -5/1/1 -4/2/1 -3/3/1
+";
+    let mesh = TriangleMesh::from_obj_str(text, Path::new("x.obj")).unwrap();
+    assert!(mesh.skipped().is_empty(), "{:?}", mesh.skipped());
+    assert_eq!(mesh.vertices().len(), 5);
+    let v4: [f64; 3] = mesh.vertices()[4].into();
+    assert_eq!(v4, [0.5, 2.0, 0.0]);
+    assert_eq!(
+        mesh.triangles(),
+        &[
+            // quad, fan around its first corner
+            [0, 1, 2],
+            [0, 2, 3],
+            // v/vt, v/vt/vn, v//vn
+            [0, 1, 2],
+            [0, 1, 2],
+            [0, 1, 2],
+            // pentagon with negative indices: 1 2 3 5 4
+            [0, 1, 2],
+            [0, 2, 4],
+            [0, 4, 3],
+            // negative with slashes
+            [0, 1, 2],
+        ]
+    );
+}
+
+#[test]
+fn obj_degenerate_face_is_skipped_with_its_line() {
+    let text = format!("{V4}f 1 2 3\nf 1 1 2\nf 1 3 4\n");
+    let mesh = TriangleMesh::from_obj_str(&text, Path::new("x.obj")).unwrap();
+    assert_eq!(mesh.triangles(), &[[0, 1, 2], [0, 2, 3]]);
+    assert_eq!(mesh.skipped().len(), 1);
+    match &mesh.skipped()[0] {
+        Error::Obj { path, line, message } => {
+            assert_eq!(path, Path::new("x.obj"));
+            assert_eq!(*line, 6);
+            assert!(message.contains("degenerate"), "{message}");
+        }
+        other => panic!("expected Error::Obj, got {other:?}"),
+    }
+}
