@@ -13,10 +13,12 @@
 //! Fauerby's detection, the robust response on the robust detection; any
 //! combination can be chosen with [`MoveOptions::detection`].
 
+mod batch;
 pub mod fauerby;
 pub mod linahan;
 pub mod robust;
 
+pub use batch::{BodyMove, move_bodies};
 pub use fauerby::FauerbyOptions;
 pub use linahan::LinahanOptions;
 pub use robust::RobustOptions;
