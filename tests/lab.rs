@@ -1,0 +1,322 @@
+//! The lab: metric definitions pinned on hand-computed cases, the exact
+//! distance against brute force, and the `sweepslide run` contract.
+#![cfg(feature = "cli")]
+
+use proptest::prelude::*;
+use rug::Float;
+use std::process::Command;
+use std::sync::Arc;
+use sweepslide::geom::{Vec3, vec3};
+use sweepslide::lab::metrics::{EXACT_BITS, jitter, penetration, snag_ratio, triangle_distance_sq};
+use sweepslide::lab::{Precision, RunConfig, run};
+use sweepslide::respond::Response;
+use sweepslide::world::{TriangleMesh, World};
+
+fn floor() -> World<f64> {
+    let v = vec![[-10.0, 0.0, -10.0], [-10.0, 0.0, 10.0], [10.0, 0.0, 10.0], [10.0, 0.0, -10.0]];
+    World::new(Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap()))
+}
+
+#[test]
+fn body_inside_a_plane_by_a_tenth_reports_a_tenth() {
+    let world = floor();
+    // A sphere of radius 1 whose centre is 0.9 above the floor.
+    let pen = penetration(&world, &vec3(1.0, 1.0, 1.0), &vec3(0.5, 0.9, 0.5)).unwrap();
+    assert_eq!(pen, 1.0 - 0.9, "exact at 512 bits, then rounded once");
+    // Radius 2: penetration in world units.
+    let pen = penetration(&world, &vec3(2.0, 2.0, 2.0), &vec3(0.5, 1.9, 0.5)).unwrap();
+    assert!((pen - 0.1).abs() < 1e-15, "{pen}");
+    // Just clear of the floor: negative (the clearance), not penetrating.
+    let pen = penetration(&world, &vec3(1.0, 1.0, 1.0), &vec3(0.0, 1.0 + 2f64.powi(-30), 0.0)).unwrap();
+    assert_eq!(pen, -(2f64.powi(-30)));
+    // Nothing within reach.
+    assert_eq!(penetration(&world, &vec3(1.0, 1.0, 1.0), &vec3(0.0, 1.5, 0.0)), None);
+}
+
+#[test]
+fn ellipsoid_penetration_is_in_espace_units() {
+    let world = floor();
+    // Radii (1, 2, 1): centre 1.8 above the floor is 0.9 in eSpace: 0.1 inside.
+    let pen = penetration(&world, &vec3(1.0, 2.0, 1.0), &vec3(0.0, 1.8, 0.0)).unwrap();
+    assert!((pen - 0.1).abs() < 1e-15, "{pen}");
+}
+
+#[test]
+fn straight_motion_and_rest_have_zero_jitter() {
+    let line: Vec<Vec3<f64>> = (0..40).map(|k| vec3(0.1 * k as f64, 0.0, 0.0)).collect();
+    assert_eq!(jitter(&line, 0.1), 0.0);
+    let rest: Vec<Vec3<f64>> = (0..40).map(|_| vec3(3.0, 1.0, 2.0)).collect();
+    assert_eq!(jitter(&rest, 0.1), 0.0);
+}
+
+#[test]
+fn back_and_forth_has_the_jitter_the_formula_gives() {
+    // 9 positions, 8 displacements: K = 2 (the last two): +0.1 then -0.1.
+    let xs = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.6];
+    let path: Vec<Vec3<f64>> = xs.iter().map(|&x| vec3(x, 0.0, 0.0)).collect();
+    // (|0.1| + |-0.1| - |0|) / (2 * 0.1) = 1.
+    let j = jitter(&path, 0.1);
+    assert!((j - 1.0).abs() < 1e-12, "{j}");
+    // A longer wiggle: K = 4 of 16 displacements, alternating 0.05 and -0.05.
+    let mut x = 0.0;
+    let mut path: Vec<Vec3<f64>> = vec![vec3(x, 0.0, 0.0)];
+    for k in 0..16 {
+        x += if k < 12 {
+            0.1
+        } else if k % 2 == 0 {
+            0.05
+        } else {
+            -0.05
+        };
+        path.push(vec3(x, 0.0, 0.0));
+    }
+    let j = jitter(&path, 0.1);
+    assert!((j - (0.2 - 0.0) / 0.4).abs() < 1e-12, "{j}");
+}
+
+#[test]
+fn snag_ratio_is_progress_over_ideal() {
+    let s = snag_ratio(&vec3::<f64>(0.0, 1.0, 0.0), &vec3(5.0, 1.0, 3.0), [0.1, 0.0, 0.0], 100).unwrap();
+    assert!((s - 0.5).abs() < 1e-15);
+    assert_eq!(snag_ratio(&vec3::<f64>(0.0, 0.0, 0.0), &vec3(1.0, 0.0, 0.0), [0.0; 3], 10), None);
+}
+
+/// Brute force: the minimum of the squared distance over a fine barycentric
+/// grid refined around the best cell, at 512 bits.
+fn brute_distance_sq(p: [f64; 3], t: [[f64; 3]; 3]) -> f64 {
+    let mut best = f64::INFINITY;
+    let (mut u0, mut v0, mut h) = (0.0f64, 0.0f64, 1.0f64);
+    for _ in 0..30 {
+        let (mut bu, mut bv) = (u0, v0);
+        for i in -8..=8 {
+            for j in -8..=8 {
+                let (u, v) = ((u0 + i as f64 * h / 8.0).clamp(0.0, 1.0), (v0 + j as f64 * h / 8.0).clamp(0.0, 1.0));
+                if u + v > 1.0 {
+                    continue;
+                }
+                let q: Vec<Float> = (0..3)
+                    .map(|k| {
+                        let mut x = Float::with_val(EXACT_BITS, t[0][k]);
+                        x += Float::with_val(EXACT_BITS, t[1][k] - t[0][k]) * u;
+                        x += Float::with_val(EXACT_BITS, t[2][k] - t[0][k]) * v;
+                        x
+                    })
+                    .collect();
+                let d2: Float = (0..3)
+                    .map(|k| Float::with_val(EXACT_BITS, &q[k] - p[k]).square())
+                    .fold(Float::new(EXACT_BITS), |a, b| a + b);
+                let d2 = d2.to_f64();
+                if d2 < best {
+                    best = d2;
+                    (bu, bv) = (u, v);
+                }
+            }
+        }
+        (u0, v0, h) = (bu, bv, h / 4.0);
+    }
+    best
+}
+
+fn exact(p: [f64; 3]) -> [Float; 3] {
+    p.map(|x| Float::with_val(EXACT_BITS, x))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+    /// The exact distance agrees with brute force, including points placed
+    /// near edges and vertices (the offsets below put the foot point within
+    /// 1e-9 of an edge or vertex half the time).
+    #[test]
+    fn exact_distance_matches_brute_force(
+        t in prop::array::uniform3(prop::array::uniform3(-2.0f64..2.0)),
+        w in prop::array::uniform3(0.0f64..1.0),
+        lift in -1.0f64..1.0,
+        snap in 0usize..4,
+    ) {
+        let a = nalgebra::Vector3::from(t[0]);
+        let b = nalgebra::Vector3::from(t[1]);
+        let c = nalgebra::Vector3::from(t[2]);
+        prop_assume!((b - a).cross(&(c - a)).norm() > 1e-3);
+        let n = (b - a).cross(&(c - a)).normalize();
+        let s = w[0] + w[1] + w[2];
+        let mut foot = (a * w[0] + b * w[1] + c * w[2]) / s;
+        match snap {
+            0 => foot = a + (b - a) * w[0] + n * 1e-9,         // on edge 0
+            1 => foot = c + (c - b) * (0.5 * w[1]),           // beyond vertex c, outside
+            2 => foot = b + (b - a) * 1e-9,                   // just past vertex b
+            _ => {}
+        }
+        let p = foot + n * lift;
+        let exact_d2 = triangle_distance_sq(&exact(p.into()), &exact(t[0]), &exact(t[1]), &exact(t[2])).to_f64();
+        let brute = brute_distance_sq(p.into(), t);
+        prop_assert!(exact_d2 <= brute * (1.0 + 1e-9) + 1e-18, "exact {exact_d2} above brute force {brute}");
+        prop_assert!(brute - exact_d2 <= 1e-9 * brute.max(1e-6), "exact {exact_d2} far below brute force {brute}");
+    }
+}
+
+fn sweepslide(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_sweepslide")).args(args).output().expect("the CLI runs")
+}
+
+const CONTRACT: [&str; 14] = [
+    "scene",
+    "response",
+    "detection",
+    "precision",
+    "frames",
+    "max_penetration",
+    "penetrating_frames",
+    "jitter",
+    "max_iterations",
+    "mean_iterations",
+    "nan_frames",
+    "decision_flips",
+    "final_position",
+    "ns_per_move",
+];
+
+#[test]
+fn run_json_has_the_contract_fields_for_every_scene_response_and_hardware_precision() {
+    for (scene, _, _) in sweepslide::lab::scenes::BUILTIN {
+        for response in ["fauerby", "linahan", "robust"] {
+            for precision in ["f32", "f64"] {
+                let out = sweepslide(&[
+                    "run",
+                    "--scene",
+                    scene,
+                    "--response",
+                    response,
+                    "--precision",
+                    precision,
+                    "--frames",
+                    "40",
+                    "--json",
+                ]);
+                assert!(
+                    out.status.success(),
+                    "{scene} {response} {precision}: {}",
+                    String::from_utf8_lossy(&out.stderr)
+                );
+                let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
+                for field in CONTRACT {
+                    assert!(v.get(field).is_some(), "{scene} {response} {precision}: missing {field}");
+                }
+                assert_eq!(v["frames"], 40);
+                assert_eq!(v["final_position"].as_array().map(Vec::len), Some(3));
+                if response == "robust" {
+                    assert_eq!(v["penetrating_frames"], 0, "{scene} {precision}");
+                    assert_eq!(v["nan_frames"], 0, "{scene} {precision}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn negative_numbers_work_in_both_forms() {
+    for args in [["--velocity", "-0.1,0,0"], ["--velocity=-0.1,0,0", "--seed=2"]] {
+        let mut all = vec!["run", "--scene", "floor", "--frames", "5", "--json", "--start", "0,1.5,0"];
+        all.extend(args);
+        let out = sweepslide(&all);
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert!(v["final_position"][0].as_f64().unwrap() < -0.4, "moved towards -x: {v}");
+    }
+    let out = sweepslide(&["run", "--scene=floor", "--offset=-1e5,0,-1e5", "--frames", "5", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn unknown_names_and_bad_numbers_exit_with_code_2() {
+    for args in [
+        vec!["run", "--scene", "nowhere"],
+        vec!["run", "--scene", "wedge:abc"],
+        vec!["run", "--scene", "wedge:200"],
+        vec!["run", "--scene", "floor", "--response", "quake"],
+        vec!["run", "--scene", "floor", "--precision", "f16"],
+        vec!["run", "--scene", "floor", "--precision", "mpfr1"],
+        vec!["run", "--scene", "floor", "--velocity", "1,2"],
+        vec!["run", "--scene", "floor", "--velocity", "1,nan,2"],
+        vec!["run", "--scene", "floor", "--radius", "-1"],
+        vec!["run", "--scene", "floor", "--radii", "1,0,1"],
+        vec!["run", "--scene", "floor", "--velocity", "0,0,0"],
+        vec!["run", "--mesh", "/nonexistent.obj"],
+        vec!["report", "--shard", "3/2"],
+        vec!["frobnicate"],
+    ] {
+        let out = sweepslide(&args);
+        let code = out.status.code();
+        let expected = if args.contains(&"/nonexistent.obj") { 1 } else { 2 };
+        assert_eq!(code, Some(expected), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(!out.stderr.is_empty(), "{args:?} explains itself");
+    }
+}
+
+#[test]
+fn trace_csv_has_one_row_per_frame() {
+    let dir = std::env::temp_dir().join(format!("sweepslide-trace-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("t.csv");
+    let out = sweepslide(&["run", "--scene", "corner", "--frames", "12", "--trace", path.to_str().unwrap()]);
+    assert!(out.status.success());
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(text.lines().count(), 13);
+    assert!(text.starts_with("frame,x,y,z,penetration,iterations,stop,flip"));
+}
+
+#[test]
+fn runs_are_deterministic_across_thread_counts() {
+    let scene = Arc::new(sweepslide::lab::scenes::build("terrain:16", 3).unwrap());
+    let configs: Vec<RunConfig> = [Precision::F32, Precision::F64, Precision::Mpfr(40)]
+        .into_iter()
+        .flat_map(|precision| {
+            Response::ALL.map(|response| RunConfig {
+                scene: scene.clone(),
+                response,
+                detection: None,
+                precision,
+                seed: 3,
+            })
+        })
+        .collect();
+    let strip = |r: sweepslide::lab::RunResult| sweepslide::lab::RunResult { ns_per_move: 0.0, ..r };
+    let one: Vec<_> =
+        sweepslide::lab::run_all(&configs, 1, &|_| {}).unwrap().into_iter().map(|o| strip(o.unwrap().result)).collect();
+    let two: Vec<_> =
+        sweepslide::lab::run_all(&configs, 2, &|_| {}).unwrap().into_iter().map(|o| strip(o.unwrap().result)).collect();
+    assert_eq!(one, two);
+    let single = strip(run(&configs[4]).unwrap().result);
+    assert_eq!(single, one[4]);
+}
+
+#[test]
+fn every_shared_mesh_runs() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
+    let meshes = sweepslide::report::matrix::meshes_in(&dir);
+    if meshes.is_empty() {
+        eprintln!("skipped: no meshes in {}", dir.display());
+        return;
+    }
+    for mesh in meshes {
+        for response in ["fauerby", "linahan", "robust"] {
+            let out = sweepslide(&[
+                "run",
+                "--mesh",
+                mesh.to_str().unwrap(),
+                "--response",
+                response,
+                "--precision",
+                "f32",
+                "--frames",
+                "60",
+                "--json",
+            ]);
+            assert!(out.status.success(), "{}: {}", mesh.display(), String::from_utf8_lossy(&out.stderr));
+            let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+            if response == "robust" {
+                assert_eq!(v["penetrating_frames"], 0, "{}", mesh.display());
+                assert_eq!(v["nan_frames"], 0, "{}", mesh.display());
+            }
+        }
+    }
+}

@@ -1,0 +1,142 @@
+//! The report: shards merge into exactly the unsharded results, and the
+//! quick report is a well-formed, self-contained page with one JSON record
+//! per run.
+#![cfg(feature = "cli")]
+
+use std::collections::HashSet;
+use std::path::Path;
+use sweepslide::lab::RunResult;
+use sweepslide::report::matrix::{matrix, shard};
+use sweepslide::report::{Record, Runs, merge, run_entries};
+
+fn timeless(records: Vec<Record>) -> Vec<Record> {
+    records
+        .into_iter()
+        .map(|mut r| {
+            r.outcome = r.outcome.map(|o| RunResult { ns_per_move: 0.0, ..o });
+            r
+        })
+        .collect()
+}
+
+#[test]
+fn two_shards_merged_give_the_unsharded_results() {
+    let (info, entries) = matrix(true, &[]);
+    // A slice of the matrix that mixes scenes, responses, precisions and the
+    // dial, kept small so the test is quick; indices are renumbered so it
+    // is a matrix of its own.
+    let mut picked: Vec<_> = entries.iter().step_by(23).cloned().collect();
+    for (i, e) in picked.iter_mut().enumerate() {
+        e.index = i;
+    }
+    let info = sweepslide::report::matrix::MatrixInfo { runs: picked.len(), ..info };
+    let whole = Runs { info: info.clone(), records: run_entries(&picked, 2, &|| {}).unwrap() };
+    let shards: Vec<Runs> = (1..=2)
+        .map(|k| {
+            let part = shard(picked.clone(), k, 2).unwrap();
+            Runs { info: info.clone(), records: run_entries(&part, 1, &|| {}).unwrap() }
+        })
+        .collect();
+    assert!(shards.iter().all(|s| !s.records.is_empty()));
+    let merged = merge(shards.clone()).unwrap();
+    assert_eq!(timeless(merged.records), timeless(whole.records));
+    // A missing shard or a doubled one is refused.
+    assert!(merge(vec![shards[0].clone()]).is_err());
+    assert!(merge(vec![shards[0].clone(), shards[0].clone(), shards[1].clone()]).is_err());
+}
+
+/// Checks that every element opened is closed in order (void elements
+/// aside) and returns the `href` and `src` targets.
+fn check_balanced(html: &str) -> Vec<String> {
+    const VOID: [&str; 6] = ["meta", "br", "img", "link", "hr", "input"];
+    let mut stack: Vec<String> = Vec::new();
+    let mut links = Vec::new();
+    let mut rest = html;
+    while let Some(start) = rest.find('<') {
+        let end = rest[start..].find('>').expect("every tag is closed") + start;
+        let tag = &rest[start + 1..end];
+        rest = &rest[end + 1..];
+        if tag.starts_with('!') || tag.starts_with('?') {
+            continue;
+        }
+        for attr in ["href=\"", "src=\""] {
+            if let Some(i) = tag.find(attr) {
+                let value = &tag[i + attr.len()..];
+                links.push(value[..value.find('"').expect("quoted")].to_string());
+            }
+        }
+        let name: String =
+            tag.trim_start_matches('/').chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '-').collect();
+        if tag.starts_with('/') {
+            assert_eq!(stack.pop().as_deref(), Some(name.as_str()), "closing </{name}> out of order");
+        } else if !(tag.ends_with('/') || VOID.contains(&name.as_str())) {
+            stack.push(name);
+        }
+    }
+    assert!(stack.is_empty(), "unclosed elements: {stack:?}");
+    links
+}
+
+#[test]
+fn quick_report_is_complete_and_self_contained() {
+    let out = std::env::temp_dir().join(format!("sweepslide-report-{}", std::process::id()));
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_sweepslide"))
+        .args([
+            "report",
+            "--quick",
+            "--out",
+            out.to_str().unwrap(),
+            "--meshes",
+            out.join("no-meshes").to_str().unwrap(),
+        ])
+        .status();
+    // A missing --meshes directory is an error (exit 2); with none, the
+    // matrix is the built-in one.
+    assert_eq!(status.unwrap().code(), Some(2));
+    let empty = out.join("empty-meshes");
+    std::fs::create_dir_all(&empty).unwrap();
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_sweepslide"))
+        .args(["report", "--quick", "--out", out.to_str().unwrap(), "--meshes", empty.to_str().unwrap()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    for link in check_balanced(&html) {
+        assert!(!link.contains("://"), "no network: {link}");
+        let target = link.split('#').next().unwrap();
+        if !target.is_empty() {
+            assert!(Path::new(&out).join(target).is_file(), "{link} exists");
+        }
+    }
+    assert!(html.contains("<svg"), "plots are inline");
+    let (info, entries) = matrix(true, &[]);
+    let results: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    assert_eq!(results.len(), info.runs, "one record per run");
+    let indices: HashSet<u64> = results.iter().map(|r| r["index"].as_u64().unwrap()).collect();
+    assert_eq!(indices.len(), entries.len());
+    for r in &results {
+        for field in [
+            "scene",
+            "response",
+            "detection",
+            "precision",
+            "frames",
+            "max_penetration",
+            "penetrating_frames",
+            "jitter",
+            "max_iterations",
+            "mean_iterations",
+            "nan_frames",
+            "decision_flips",
+            "final_position",
+            "ns_per_move",
+        ] {
+            assert!(r.get(field).is_some(), "missing {field} in {r}");
+        }
+    }
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    assert_eq!(csv.lines().count(), info.runs + 1);
+    std::fs::remove_dir_all(&out).ok();
+}
