@@ -29,6 +29,22 @@ enum Command {
     Scenes,
     /// Run the experiment matrix (or one shard of it) and write the report.
     Report(ReportArgs),
+    /// Search random scenes (angles, clearances, speeds, offsets) for
+    /// penetration, NaN and jitter, and print how to reproduce each failure.
+    Search {
+        /// Seed of the search.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Number of random scenes; each runs 3 responses x {f32, f64}.
+        #[arg(long, default_value_t = 200)]
+        trials: usize,
+        /// Worker threads (default: one per core).
+        #[arg(long, default_value_t = 0)]
+        jobs: usize,
+        /// Print the findings as JSON lines.
+        #[arg(long)]
+        json: bool,
+    },
     /// Combine shard directories into one report.
     Merge {
         /// Output directory of the merged report.
@@ -345,6 +361,19 @@ fn merge_command(out: &PathBuf, shards: &[PathBuf]) -> Result<(), Failure> {
     Ok(())
 }
 
+fn search_command(seed: u64, trials: usize, jobs: usize, json: bool) -> Result<(), Failure> {
+    let findings = sweepslide::lab::search::search(seed, trials, jobs)?;
+    for f in &findings {
+        if json {
+            println!("{}", serde_json::to_string(f).expect("findings serialise"));
+        } else {
+            println!("{:?} {:.3e}  {}", f.kind, f.value, f.command);
+        }
+    }
+    eprintln!("{} findings in {} trials (seed {seed})", findings.len(), trials);
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
@@ -358,6 +387,7 @@ fn main() -> ExitCode {
         }
         Command::Report(args) => report_command(args),
         Command::Merge { out, shards } => merge_command(out, shards),
+        Command::Search { seed, trials, jobs, json } => search_command(*seed, *trials, *jobs, *json),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -279,9 +279,12 @@ pub fn sweep_robust<T: Real>(
             let t = (plane_dist - &one) / -nv;
             if wins(&t) {
                 let contact = vel * t.clone() - n;
+                // Orientation against the triangle's own winding normal (not
+                // the side-flipped `n`), so back faces are found too.
+                let winding = c.normal.as_ref().unwrap_or(n);
                 let inside = (0..3).all(|i| {
                     let (a, b) = (p[i], p[(i + 1) % 3]);
-                    dot(&cross(&(b - a), &(&contact - a)), n) >= zero
+                    dot(&cross(&(b - a), &(&contact - a)), winding) >= zero
                 });
                 if inside {
                     return Some(Hit {

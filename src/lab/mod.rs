@@ -8,6 +8,7 @@ pub mod metrics;
 pub mod rng;
 pub mod runner;
 pub mod scenes;
+pub mod search;
 
 pub use runner::{FrameRecord, Precision, RunConfig, RunOutput, RunResult, run, run_all};
 pub use scenes::{Motion, Scene};

@@ -240,7 +240,8 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             let h = 20.0 * a.tan();
             b.quad([-20.0, h, -20.0], [-20.0, h, 20.0], [0.0, 0.0, 20.0], [0.0, 0.0, -20.0], [a.sin(), a.cos(), 0.0]);
             let mut s = scene(label(45.0), description, b.mesh()?);
-            s.start = [-1.5, 1.5 * a.tan() + 2.5, 0.0];
+            // 2.5 above the ramp along its normal, wherever the angle.
+            s.start = [-1.5 + 2.5 * a.sin(), 1.5 * a.tan() + 2.5 * a.cos(), 0.0];
             s.velocity = [-0.05, -0.1, 0.0];
             s
         }
@@ -272,7 +273,8 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             b.quad([-20.0, h, -30.0], [-20.0, h, 30.0], [0.0, 0.0, 30.0], [0.0, 0.0, -30.0], [a.sin(), a.cos(), 0.0]);
             b.quad([0.0, 0.0, -30.0], [0.0, 0.0, 30.0], [20.0, h, 30.0], [20.0, h, -30.0], [-a.sin(), a.cos(), 0.0]);
             let mut s = scene(label(30.0), description, b.mesh()?);
-            s.start = [2.0, 2.0 * a.tan() + 3.0, -20.0];
+            // 3 above the right slope along its normal.
+            s.start = [2.0 - 3.0 * a.sin(), 2.0 * a.tan() + 3.0 * a.cos(), -20.0];
             s.velocity = [-0.05, -0.1, 0.1];
             s.ideal = Some([0.0, 0.0, 0.1]);
             s.frames = 300;

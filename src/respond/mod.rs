@@ -238,8 +238,7 @@ pub fn move_body<T: Real>(
         Frame { world, body, detection: options.effective_detection(), detect: &options.detect, hood, trace, moves };
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();
-    let at_rest = [velocity, gravity].iter().all(|v| v.iter().all(|x| *x == T::zero()));
-    if options.response == Response::Robust && at_rest {
+    if options.response == Response::Robust {
         p = robust::depenetrate(&mut frame, p, &options.robust);
     }
     for vel in [velocity, gravity] {

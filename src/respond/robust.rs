@@ -7,11 +7,14 @@
 //! 1. Sweep the unit sphere along `w` (robust detection by default).
 //!    Nothing hit: move the whole way, done.
 //! 2. Advance to the hit, stopping `pad` short *along the contact normal*:
-//!    the advance is shortened by `pad / (-w . n)` (capped at the hit), and
-//!    if that leaves less than `pad` of gap (a grazing or touching hit) the
-//!    body is pushed out along `n` by the shortfall, never further than half
-//!    the room to whatever lies behind it (so it centres in a slot narrower
-//!    than `2 + 2 pad` instead of jamming).
+//!    the advance is shortened by `pad / (-w . n)` (capped at the hit); if
+//!    that leaves less than `pad / 2` of gap (a grazing or touching hit) the
+//!    body is pushed out along `n` to `pad`, never further than half the
+//!    room to whatever lies behind it (so it centres in a slot narrower than
+//!    `2 + 2 pad` instead of jamming). A body already within the resting
+//!    band `[pad / 2, 2 pad]` of the contact does not move towards it: no
+//!    creeping, and no toggling between neighbouring floats far from the
+//!    origin.
 //! 3. Add the contact normal to the set of planes met this pass. (The
 //!    robust detection already gives an edge or vertex contact between
 //!    coplanar or gently convex triangles, an internal edge of a tessellated
@@ -47,7 +50,7 @@
 use super::{Frame, StopReason};
 use crate::Real;
 use crate::detect::Detection;
-use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
+use crate::geom::{Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
 
 /// The robust response's tolerances. Distances are eSpace units (radius 1);
 /// `*_ulps` fields are multiples of the backend's unit roundoff `u`.
@@ -153,18 +156,22 @@ pub fn project_onto_cone<T: Real>(w: &Vec3<T>, normals: &[Vec3<T>], opts: &Robus
     best.map_or_else(Vec3::zeros, |(_, v)| v)
 }
 
-/// Moves `p` out along the unit `normal` by up to `want`, but no further than
-/// half the room (`gap` is the current clearance behind).
+/// Moves `p` out along the unit `normal` by up to `want`, but no further
+/// than to the middle of the room between the contact behind (`gap` away)
+/// and whatever lies ahead. The sweep looks `2 want + gap` ahead, further
+/// than the push, so an obstacle exactly `want` away is seen rather than
+/// lost to rounding at the end of the sweep.
 fn push_out<T: Real>(frame: &Frame<'_, T>, p: Vec3<T>, normal: &Vec3<T>, want: T, gap: &T) -> Vec3<T> {
-    let d = normal * want.clone();
-    match frame.hood.earliest_hit(Detection::Robust, &p, &d, frame.detect) {
-        None => p + d,
+    let look = T::c(2.0) * &want + gap;
+    let d = normal * look.clone();
+    let delta = match frame.hood.earliest_hit(Detection::Robust, &p, &d, frame.detect) {
+        None => want,
         Some(h) => {
-            let room = h.t * &want;
-            let delta = ((room - gap) * T::c(0.5)).max(T::zero()).min(want);
-            p + normal * delta
+            let room = h.t * &look;
+            ((room - gap) * T::c(0.5)).max(T::zero()).min(want)
         }
-    }
+    };
+    p + normal * delta
 }
 
 /// One sliding pass from eSpace `p` by eSpace `w`.
@@ -187,20 +194,23 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
         }
         let Some(hit) = frame.check_collision(&p, &remaining) else {
             frame.trace.stop = StopReason::Free;
-            return p + remaining;
+            return restore_skin(frame, p + remaining, &w, opts);
         };
-        if hit.started_overlapping && frame.trace.depenetration == 0.0 {
-            p = depenetrate(frame, p, opts);
-            continue;
-        }
         let tri = triangle_e(frame, hit.triangle);
         let pad = padding(frame, &p, &remaining, &tri, opts);
+        // The gap to the contact along its normal now. Within the resting
+        // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
+        // out, so rounding cannot make it toggle between neighbouring floats.
         let approach = -dot(&remaining, &hit.normal);
-        let t_move =
-            if approach > zero { (hit.t.clone() - pad.clone() / &approach).max(zero.clone()) } else { zero.clone() };
+        let gap_now = hit.t.clone() * approach.clone().max(zero.clone());
+        let t_move = if approach > zero && gap_now > T::c(2.0) * &pad {
+            (hit.t.clone() - pad.clone() / &approach).max(zero.clone())
+        } else {
+            zero.clone()
+        };
         p += &remaining * t_move.clone();
         let gap = (hit.t.clone() - &t_move) * approach.max(zero.clone());
-        if gap < pad {
+        if gap < pad.clone() * T::c(0.5) {
             p = push_out(frame, p, &hit.normal, pad - &gap, &gap);
         }
         let n = hit.normal.clone();
@@ -213,28 +223,65 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
     p
 }
 
-/// Pushes a body that starts embedded out of the geometry: up to
+/// After a move that hit nothing: a sweep may legitimately end a hair from
+/// a surface it did not reach, closer than the final rounding of the
+/// position can guarantee. If the nearest triangle is closer than
+/// `1 + pad / 2`, push out along its separating direction to `1 + pad`
+/// (room permitting, as [`push_out`]). Planes at distance `1 + pad` or more
+/// are skipped with one dot product each.
+fn restore_skin<T: Real>(frame: &Frame<'_, T>, p: Vec3<T>, w: &Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
+    let one = T::one();
+    let reach = one.clone() + T::c(opts.max_padding);
+    let mut nearest: Option<(T, Vec3<T>, &Triangle<T>)> = None;
+    for c in &frame.hood.triangles {
+        if c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &c.triangle.a)).abs() >= reach) {
+            continue;
+        }
+        let (q, _) = closest_point_on_triangle(&p, &c.triangle);
+        let dist = norm(&(&p - &q));
+        if dist < reach && nearest.as_ref().is_none_or(|b| dist < b.0) {
+            nearest = Some((dist, q, &c.triangle));
+        }
+    }
+    let Some((dist, q, tri)) = nearest else { return p };
+    let pad = padding(frame, &p, w, tri, opts);
+    let gap = dist.clone() - &one;
+    if !(gap < pad.clone() * T::c(0.5)) {
+        return p;
+    }
+    let Some(dir) = normalize(&(&p - &q)) else { return p };
+    push_out(frame, p, &dir, pad - &gap, &gap.max(T::zero()))
+}
+
+/// Pushes a body that starts embedded out of the geometry (run at the start
+/// of every robust move): up to
 /// `depenetration_rounds` times, along the separating direction of the
 /// deepest overlap (from the closest point to the centre; the face's front
-/// normal if the centre lies on the face, or behind it when triangles are
-/// one-sided), to `1 + pad` from it.
+/// normal if the centre lies on the face, or anywhere behind its plane when
+/// triangles are one-sided), to `1 + pad` from it.
 pub(crate) fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
     let one = T::one();
     for _ in 0..opts.depenetration_rounds {
-        let mut deepest: Option<(T, Vec3<T>, Feature, &Triangle<T>)> = None;
-        for tri in frame.hood.triangles.iter().map(|c| &c.triangle) {
-            let (q, feature) = closest_point_on_triangle(&p, tri);
+        let mut deepest: Option<(T, Vec3<T>, &Triangle<T>)> = None;
+        for c in &frame.hood.triangles {
+            let tri = &c.triangle;
+            // A plane at distance 1 or more cannot hold an overlap (the cheap
+            // test that keeps this scan affordable every frame).
+            if c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &tri.a)).abs() >= one) {
+                continue;
+            }
+            let (q, _) = closest_point_on_triangle(&p, tri);
             let dist = norm(&(&p - &q));
             if dist < one && deepest.as_ref().is_none_or(|d| dist < d.0) {
-                deepest = Some((dist, q, feature, tri));
+                deepest = Some((dist, q, tri));
             }
         }
-        let Some((dist, q, feature, tri)) = deepest else { break };
+        let Some((dist, q, tri)) = deepest else { break };
         let tri = tri.clone();
         let Some(front) = normalize(&tri.unnormalized_normal()) else { break };
         let side = dot(&front, &(&p - &tri.a));
         let tiny = T::c(opts.feasible_ulps * T::unit_roundoff());
-        let (dir, depth) = if feature == Feature::Face && side < T::zero() && !frame.detect.two_sided {
+        let (dir, depth) = if side < T::zero() && !frame.detect.two_sided {
             (front, one.clone() - &side)
         } else if dist > tiny {
             ((&p - &q) / dist.clone(), one.clone() - &dist)

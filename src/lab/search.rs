@@ -1,0 +1,157 @@
+//! A seeded random search for failures: scene families with random angles,
+//! clearances, speeds and offsets, run in `f32` and `f64` through all three
+//! responses. Every failure comes with the `sweepslide run` command that
+//! reproduces it.
+
+use super::rng::Rng;
+use super::runner::{FrameRecord, Precision, RunConfig, RunResult, run_all};
+use super::scenes::build;
+use crate::Error;
+use crate::respond::Response;
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+/// What went wrong in a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailureKind {
+    /// A frame ended with the body inside the geometry (exact check).
+    Penetration,
+    /// A frame ended at a NaN or infinite position.
+    Nan,
+    /// The body kept moving back and forth where it should rest (jitter
+    /// above 1e-3 of the speed in a scene whose ideal is rest, with less net
+    /// progress than half the path, still there in a run four times as
+    /// long).
+    Jitter,
+}
+
+/// One failure and how to reproduce it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Finding {
+    /// The kind of failure.
+    pub kind: FailureKind,
+    /// Its size: the largest penetration, the NaN frame count, or the jitter.
+    pub value: f64,
+    /// The run's metrics.
+    pub result: RunResult,
+    /// The command line that reproduces it.
+    pub command: String,
+}
+
+/// One random trial: a scene spec, where it is, how the body moves.
+#[derive(Clone, Debug)]
+struct Trial {
+    spec: String,
+    offset: [f64; 3],
+    velocity: [f64; 3],
+    frames: usize,
+    rest: bool,
+}
+
+fn trial(rng: &mut Rng) -> Trial {
+    let families = ["corner", "wedge", "crease", "slot", "dead-end", "tessellated-floor"];
+    let family = families[(rng.next_u64() % families.len() as u64) as usize];
+    let (spec, rest) = match family {
+        "corner" => (format!("corner:{:.2}", rng.range(5.0, 85.0)), true),
+        "wedge" => (format!("wedge:{:.3}", 10f64.powf(rng.range(-0.3, 1.3))), false),
+        "crease" => (format!("crease:{:.2}", rng.range(2.0, 75.0)), false),
+        "slot" => (format!("slot:{:.3e}", 10f64.powf(rng.range(-5.0, 0.0))), false),
+        "tessellated-floor" => ("tessellated-floor:12".to_string(), false),
+        _ => ("dead-end".to_string(), true),
+    };
+    let scene = build(&spec, 1).expect("search specs are valid");
+    let speed = 10f64.powf(rng.range(-7.0, 0.7));
+    let velocity = scene.velocity.map(|v| v * speed);
+    let offset = if rng.coin() {
+        [0.0; 3]
+    } else {
+        let m = 10f64.powf(rng.range(1.0, 5.0));
+        [rng.range(-m, m), rng.range(-m, m), rng.range(-m, m)].map(|x| x.round())
+    };
+    Trial { spec, offset, velocity: velocity.map(|v| v as f32 as f64), frames: 60, rest }
+}
+
+fn command(t: &Trial, response: Response, precision: Precision) -> String {
+    let v = |a: [f64; 3]| format!("{:e},{:e},{:e}", a[0], a[1], a[2]);
+    format!(
+        "sweepslide run --scene {} --offset={} --velocity={} --frames {} --response {} --precision {precision}",
+        t.spec,
+        v(t.offset),
+        v(t.velocity),
+        t.frames,
+        response.name()
+    )
+}
+
+/// Jitter above this (of the speed) in a scene whose ideal is rest counts.
+const JITTER: f64 = 1e-3;
+
+/// Whether the last quarter of a trajectory goes back and forth (its net
+/// displacement is less than half its path) rather than progressing, say
+/// along a ramp in steps of the float spacing far from the origin, which the
+/// jitter formula also scores.
+fn back_and_forth(frames: &[FrameRecord]) -> bool {
+    let tail = &frames[frames.len() - (frames.len() / 4).max(2).min(frames.len())..];
+    let at = |f: &FrameRecord| nalgebra::Vector3::from(f.position);
+    let path: f64 = tail.windows(2).map(|w| (at(&w[1]) - at(&w[0])).norm()).sum();
+    let net = (at(&tail[tail.len() - 1]) - at(&tail[0])).norm();
+    net < 0.5 * path
+}
+
+/// A short run may end while a slow body is still arriving, whose bent path
+/// looks like jitter; a jitter finding counts only if a run four times as
+/// long still shows it.
+fn confirm_jitter(cfg: &RunConfig) -> Result<bool, Error> {
+    let mut scene = (*cfg.scene).clone();
+    scene.frames *= 4;
+    let longer = RunConfig { scene: Arc::new(scene), ..cfg.clone() };
+    Ok(super::runner::run(&longer)?.result.jitter > JITTER)
+}
+
+/// Runs `trials` random trials from `seed` on `jobs` threads and returns
+/// every failure, in trial order.
+///
+/// # Errors
+/// A scene that cannot be built at its random offset, or a thread-pool
+/// failure.
+pub fn search(seed: u64, trials: usize, jobs: usize) -> Result<Vec<Finding>, Error> {
+    let mut rng = Rng::new(seed);
+    let mut plan = Vec::new();
+    for _ in 0..trials {
+        let t = trial(&mut rng);
+        let mut scene = build(&t.spec, 1)?.offset(t.offset, true)?;
+        scene.velocity = t.velocity;
+        scene.ideal = None;
+        scene.frames = t.frames;
+        let scene = Arc::new(scene);
+        for precision in [Precision::F32, Precision::F64] {
+            for response in Response::ALL {
+                plan.push((
+                    t.clone(),
+                    RunConfig { scene: scene.clone(), response, detection: None, precision, seed: 1 },
+                ));
+            }
+        }
+    }
+    let configs: Vec<RunConfig> = plan.iter().map(|(_, c)| c.clone()).collect();
+    let outputs = run_all(&configs, jobs, &|_| {})?;
+    let mut findings = Vec::new();
+    for ((t, cfg), out) in plan.iter().zip(outputs) {
+        let Ok(out) = out else { continue };
+        let r = out.result;
+        let mut found = |kind, value: f64| {
+            findings.push(Finding { kind, value, result: r.clone(), command: command(t, cfg.response, cfg.precision) });
+        };
+        if r.penetrating_frames > 0 {
+            found(FailureKind::Penetration, r.max_penetration);
+        }
+        if r.nan_frames > 0 {
+            found(FailureKind::Nan, r.nan_frames as f64);
+        }
+        if t.rest && r.jitter > JITTER && back_and_forth(&out.frames) && confirm_jitter(cfg)? {
+            found(FailureKind::Jitter, r.jitter);
+        }
+    }
+    Ok(findings)
+}

@@ -1,0 +1,79 @@
+//! Failures the lab's random search found on its own (`sweepslide search`,
+//! seeds 1-4, 300 trials each), pinned as scenes. Each test replays the
+//! scene and asserts the faithful response's failure and the robust
+//! response's clean run on the very same input.
+
+use std::sync::Arc;
+use sweepslide::lab::scenes::build;
+use sweepslide::lab::{Precision, RunConfig, RunResult, run};
+use sweepslide::respond::Response;
+
+/// The scene `spec` moved by `offset`, pushed by `velocity` for 60 frames,
+/// run with `response` in `precision`.
+fn replay(spec: &str, offset: [f64; 3], velocity: [f64; 3], response: Response, precision: Precision) -> RunResult {
+    let mut scene = build(spec, 1).unwrap().offset(offset, true).unwrap();
+    scene.velocity = velocity;
+    scene.ideal = None;
+    scene.frames = 60;
+    run(&RunConfig { scene: Arc::new(scene), response, detection: None, precision, seed: 1 }).unwrap().result
+}
+
+fn assert_clean(r: &RunResult) {
+    assert_eq!(r.penetrating_frames, 0, "robust penetrates: {r:?}");
+    assert_eq!(r.nan_frames, 0, "robust NaN: {r:?}");
+}
+
+#[test]
+fn linahan_crease_is_nan_in_a_narrow_slot_in_f64_at_the_origin() {
+    // `sweepslide run --scene slot:1.439e-5 --velocity=5.5558070016559213e-5,0e0,2.777903573587537e-4
+    //  --frames 60 --response linahan --precision f64`: the two walls' normals are opposite, their
+    // cross product is zero and Linahan's crease normalises it.
+    let v = [5.5558070016559213e-5, 0.0, 2.777903573587537e-4];
+    let l = replay("slot:1.439e-5", [0.0; 3], v, Response::Linahan, Precision::F64);
+    assert!(l.nan_frames > 0, "{l:?}");
+    let r = replay("slot:1.439e-5", [0.0; 3], v, Response::Robust, Precision::F64);
+    assert_clean(&r);
+    assert!(r.final_position[2] - (-20.0) > 0.99 * 60.0 * v[2], "robust slides along the slot: {r:?}");
+}
+
+#[test]
+fn linahan_is_nan_in_an_obtuse_corner_far_from_the_origin_in_f32() {
+    let (o, v) = ([5.521e3, -4.92e2, 3.742e3], [-6.069137156009674e-2, -1.2138274312019348e-1, 0.0]);
+    let l = replay("corner:40.41", o, v, Response::Linahan, Precision::F32);
+    assert!(l.nan_frames > 0, "{l:?}");
+    assert_clean(&replay("corner:40.41", o, v, Response::Robust, Precision::F32));
+}
+
+#[test]
+fn faithful_responses_penetrate_a_far_tessellated_floor_in_f32_only() {
+    let (o, v) = ([6.862e3, -7.817e3, 3.205e3], [5.695530027151108e-2, -1.139105949550867e-2, 2.1073460578918457e-2]);
+    for response in [Response::Fauerby, Response::Linahan] {
+        let single = replay("tessellated-floor:12", o, v, response, Precision::F32);
+        assert!(single.max_penetration > 1e-3, "{single:?}");
+        let double = replay("tessellated-floor:12", o, v, response, Precision::F64);
+        assert_eq!(double.penetrating_frames, 0, "{double:?}");
+    }
+    assert_clean(&replay("tessellated-floor:12", o, v, Response::Robust, Precision::F32));
+}
+
+#[test]
+fn fauerby_penetrates_an_acute_wedge_at_the_origin_in_f32() {
+    let v = [-1.1359602212905884e-1, 0.0, 2.271920256316662e-2];
+    let f = replay("wedge:0.765", [0.0; 3], v, Response::Fauerby, Precision::F32);
+    assert!(f.max_penetration > 1e-8, "{f:?}");
+    assert_eq!(replay("wedge:0.765", [0.0; 3], v, Response::Fauerby, Precision::F64).penetrating_frames, 0);
+    assert_clean(&replay("wedge:0.765", [0.0; 3], v, Response::Robust, Precision::F32));
+}
+
+#[test]
+fn fauerby_jitters_in_a_steep_obtuse_corner_where_the_others_rest() {
+    let v = [-9.419165551662445e-2, -1.883833110332489e-1, 0.0];
+    for precision in [Precision::F32, Precision::F64] {
+        let f = replay("corner:59.05", [0.0; 3], v, Response::Fauerby, precision);
+        assert!(f.jitter > 0.1, "{f:?}");
+        for response in [Response::Linahan, Response::Robust] {
+            let r = replay("corner:59.05", [0.0; 3], v, response, precision);
+            assert!(r.jitter < 1e-6, "{r:?}");
+        }
+    }
+}

@@ -1,0 +1,11 @@
+//! Regression tests, one module per topic, each test named after the case
+//! it pins: inputs found by the lab, by fuzzing or in the literature where
+//! a variant once gave (or still gives, for the faithful baselines) a wrong
+//! answer.
+
+mod fauerby_detection;
+mod lab_found;
+mod respond_back_face;
+mod respond_embedded;
+mod respond_far_origin;
+mod respond_parallel_planes;
