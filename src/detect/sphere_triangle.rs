@@ -170,10 +170,13 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   measured from (the vertex nearest the centre for the face, the nearer
 ///   endpoint for an edge, the vertex itself), all relative to `base`.
 ///
-/// * A contact on an inactive (internal) edge or vertex, as `active` says,
-///   takes the face normal, both for deciding whether a touching sphere
-///   approaches and for the reported normal, so the seams of a tessellated
-///   surface neither snag nor stop a sliding body.
+/// * A sphere *touching* an inactive (internal) edge or vertex at `t = 0`,
+///   as `active` says, is judged and reported with the face normal: on a
+///   seam of a tessellated surface the exact contact normal is the face
+///   normal, and the rounded one must not stop a body sliding along it. A
+///   contact reached during the sweep (`t > 0`) keeps its geometric normal,
+///   which is the face normal up to rounding on a flat seam and the right
+///   constraint on a gently convex one (the body rides over it).
 ///
 /// Ties: face before edges before vertices, lower feature index first.
 #[must_use]
@@ -340,13 +343,7 @@ pub fn sweep_robust<T: Real>(
             best = Some(Touch { t, point: (*v).clone(), centre, feature: Feature::Vertex(i as u8) });
         }
     }
-    let touch = best?;
-    let feature = touch.feature;
-    let mut hit = touch.into_hit(Some(base), &face_normal, index, false);
-    if !is_active(feature, active) {
-        hit.normal = face_normal;
-    }
-    Some(hit)
+    Some(best?.into_hit(Some(base), &face_normal, index, false))
 }
 
 /// Whether a contact on `feature` keeps its own normal (an active edge or
