@@ -103,6 +103,9 @@ pub struct RunResult {
     pub seed: u64,
     /// Frames run.
     pub frames: usize,
+    /// The motion program: `constant` or `random_walk` (a steered path
+    /// bends, which the jitter metric also scores).
+    pub motion: String,
     /// Largest exact penetration over the frames (0 if never inside).
     pub max_penetration: f64,
     /// Frames that ended with the body inside the geometry.
@@ -266,6 +269,10 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         precision: cfg.precision.to_string(),
         seed: cfg.seed,
         frames,
+        motion: match scene.motion {
+            super::scenes::Motion::Constant => "constant".to_string(),
+            super::scenes::Motion::RandomWalk { .. } => "random_walk".to_string(),
+        },
         max_penetration: max_pen,
         penetrating_frames: penetrating,
         first_penetrating_frame: first_pen,

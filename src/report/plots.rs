@@ -112,14 +112,22 @@ fn draw_series<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate<
 where
     DB::ErrorType: 'static,
 {
-    for s in series {
+    // Earlier series are drawn wider and lighter, so a later one lying on top
+    // of them (responses that agree) leaves them visible at its sides.
+    let n = series.len();
+    for (k, s) in series.iter().enumerate() {
         let pts: Vec<(f64, f64)> =
             s.points.iter().map(|&(x, y)| (x, map_y(y))).filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
         let c = s.colour;
+        let width = 2 + 3 * (n - 1 - k) as u32;
+        let style = c.mix(if k + 1 == n { 1.0 } else { 0.6 }).stroke_width(width);
         chart
-            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))?
+            .draw_series(LineSeries::new(pts.clone(), style))?
             .label(s.label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(width)));
+        if let Some(&last) = pts.last() {
+            chart.draw_series(std::iter::once(Cross::new(last, 6, c.stroke_width(2))))?;
+        }
         if pts.len() <= 40 {
             chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
         }
@@ -205,6 +213,24 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
                 ),
             });
         }
+    }
+    // Jitter made visible: the corner's x coordinate frame by frame.
+    if let Some(scene) = names.iter().find(|n| n.split(':').next() == Some("corner") && !n.contains('@')) {
+        let series: Vec<Series> = main_runs(runs, "f32")
+            .filter(|(_, o, _)| o.scene == *scene)
+            .map(|(_, o, frames)| Series {
+                label: o.response.clone(),
+                colour: colour(&o.response),
+                points: frames.iter().map(|f| (f.frame as f64, f.position[0])).collect(),
+            })
+            .collect();
+        out.push(Figure {
+            name: format!("position-{}-x", slug(scene)),
+            title: format!("{scene}: x coordinate over frames (f32)"),
+            caption: "The body's x every frame while it is pushed into the obtuse corner: a response that comes to rest draws a flat line at the end, a jittering one a saw-tooth.".into(),
+            scene: None,
+            svg: line_chart(&format!("{scene}: x over frames (f32)"), "frame", "x", &series, false, false),
+        });
     }
     // Penetration over frames: the worst runs.
     let mut worst: Vec<(&Record, &RunResult, &[FrameRecord])> =
