@@ -36,30 +36,23 @@ pub fn textbook_lowest_root<T: Real>(a: &T, b: &T, c: &T, max_r: &T) -> Option<T
     None
 }
 
-/// `b^2 - a c`, accurate to a few units in the last place even when the two
-/// products nearly cancel ([`Real::diff_of_products`]).
-#[must_use]
-pub fn discriminant<T: Real>(a: &T, half_b: &T, c: &T) -> T {
-    T::diff_of_products(half_b, half_b, a, c)
-}
-
 /// The entry time of `a t^2 + 2 half_b t + c = 0` for a body that starts
-/// outside (`c > 0`) and whose squared distance grows like `a >= 0`: the
-/// smaller root `c / q` with `q = -half_b + sqrt(half_b^2 - a c)`, computed
-/// without cancellation. `None` when the body does not approach
-/// (`half_b >= 0`) or never reaches the feature (negative discriminant).
+/// outside (`c > 0`) and whose squared distance grows like `a >= 0`, given
+/// the discriminant `disc = half_b^2 - a c`: the smaller root `c / q` with
+/// `q = -half_b + sqrt(disc)`, computed without cancellation. `None` when the
+/// body does not approach (`half_b >= 0`) or never reaches the feature
+/// (`disc < 0`).
 ///
-/// There is no division by `a`, so a vanishing `a` (zero velocity, motion
-/// parallel to an edge) needs no special case: the root tends to the linear
-/// solution `c / (2 |half_b|)` and to `None` as `half_b` vanishes too.
-/// Rounding: relative error of a few `u` in the returned time.
+/// The caller computes `disc` from geometry rather than from the rounded
+/// coefficients: `half_b^2` and `a c` are each of the order of the fourth
+/// power of the sweep's length and cancel to something of the order of its
+/// square, so subtracting them loses `u s^2` (Lagrange's identity gives the
+/// cancellation-free forms used by [`super::sweep_robust`]). There is no
+/// division by `a`, so a vanishing `a` (zero velocity, motion parallel to an
+/// edge) needs no special case. Rounding: a few `u` relative in the time.
 #[must_use]
-pub fn stable_entry_root<T: Real>(a: &T, half_b: &T, c: &T) -> Option<T> {
-    if !(*half_b < T::zero()) {
-        return None;
-    }
-    let disc = discriminant(a, half_b, c);
-    if disc < T::zero() {
+pub fn stable_entry_root<T: Real>(half_b: &T, c: &T, disc: &T) -> Option<T> {
+    if !(*half_b < T::zero()) || *disc < T::zero() {
         return None;
     }
     let q = disc.sqrt() - half_b;

@@ -162,8 +162,10 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   second order).
 /// * Edges and vertices: squared-distance quadratics from cross products
 ///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
-///   `(e.v)^2`), solved by [`stable_entry_root`] and only when the body
-///   starts outside the feature.
+///   `(e.v)^2`), their discriminants from Lagrange's identity (no
+///   cancellation of fourth powers of the sweep length), solved by
+///   [`stable_entry_root`] and only when the body starts outside the
+///   feature.
 /// * No exact float equality decides anything. The touching tolerance is
 ///   `tol = opts.touch_ulps * u * s`, `u` the unit roundoff and
 ///   `s = max(1, |q|_inf)` the magnitude of the point `q` the distance is
@@ -320,7 +322,12 @@ pub fn sweep_robust<T: Real>(
         if !(c > zero) {
             continue;
         }
-        let Some(t) = stable_entry_root(&norm_squared(&m), &-dot(&m, &k), &c) else {
+        // disc = (m.k)^2 - |m|^2 c = |e|^2 (|m|^2 - (m.a)^2) by Lagrange's
+        // identity, since m x k = e (m . a): no fourth powers cancel.
+        let det = dot(&m, a);
+        let m2 = norm_squared(&m);
+        let disc = e2.clone() * (m2 - det.clone() * &det);
+        let Some(t) = stable_entry_root(&-dot(&m, &k), &c, &disc) else {
             continue;
         };
         if !better(&t, &best) {
@@ -335,7 +342,9 @@ pub fn sweep_robust<T: Real>(
     let v2 = norm_squared(vel);
     for (i, v) in p.iter().enumerate() {
         let c = norm_squared(*v) - &one;
-        let Some(t) = stable_entry_root(&v2, &-dot(vel, *v), &c) else {
+        // disc = (vel.v)^2 - |vel|^2 c = |vel|^2 - |vel x v|^2 (Lagrange).
+        let disc = v2.clone() - norm_squared(&cross(vel, *v));
+        let Some(t) = stable_entry_root(&-dot(vel, *v), &c, &disc) else {
             continue;
         };
         if better(&t, &best) {

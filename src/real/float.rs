@@ -3,7 +3,7 @@
 use super::Real;
 
 macro_rules! impl_real_for_float {
-    ($t:ty, $name:literal, $to:ident, $dop:ident) => {
+    ($t:ty, $name:literal, $to:ident) => {
         impl Real for $t {
             #[inline]
             fn bits() -> u32 {
@@ -33,10 +33,6 @@ macro_rules! impl_real_for_float {
                 <$t>::mul_add(*self, *a, *b)
             }
             #[inline]
-            fn diff_of_products(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
-                $dop(*a, *b, *c, *d)
-            }
-            #[inline]
             fn is_finite(&self) -> bool {
                 <$t>::is_finite(*self)
             }
@@ -56,37 +52,5 @@ macro_rules! impl_real_for_float {
     };
 }
 
-impl_real_for_float!(f32, "f32", to_f32, f32_diff_of_products);
-impl_real_for_float!(f64, "f64", to_f64, f64_diff_of_products);
-
-/// Exact products of two `f32` fit in an `f64` (48 of its 53 bits), so
-/// `a b - c d` is computed with one rounding in `f64` and one to `f32`:
-/// within `2u` like Kahan's algorithm, without a (software) fused
-/// multiply-add.
-fn f32_diff_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
-    (a as f64 * b as f64 - c as f64 * d as f64) as f32
-}
-
-/// Dekker's exact product: `a * b = p + e` exactly (Veltkamp splitting, no
-/// fused multiply-add needed; exact barring overflow and underflow).
-fn two_product(a: f64, b: f64) -> (f64, f64) {
-    const SPLIT: f64 = 134_217_729.0; // 2^27 + 1
-    let split = |x: f64| {
-        let t = SPLIT * x;
-        let hi = t - (t - x);
-        (hi, x - hi)
-    };
-    let p = a * b;
-    let ((ah, al), (bh, bl)) = (split(a), split(b));
-    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    (p, e)
-}
-
-/// `a b - c d` in `f64` from exact products (Dekker): `p - q` is exact
-/// when the products nearly cancel, so the error is at most about
-/// `u |a b - c d| + 2u^2 |a b|`.
-fn f64_diff_of_products(a: f64, b: f64, c: f64, d: f64) -> f64 {
-    let (p, ep) = two_product(a, b);
-    let (q, eq) = two_product(c, d);
-    (p - q) + (ep - eq)
-}
+impl_real_for_float!(f32, "f32", to_f32);
+impl_real_for_float!(f64, "f64", to_f64);

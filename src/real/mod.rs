@@ -76,20 +76,6 @@ pub trait Real:
     /// `self * a + b` with a single rounding (fused multiply-add).
     fn mul_add(&self, a: &Self, b: &Self) -> Self;
 
-    /// `a * b - c * d` with an error of at most `2u |a b - c d|` plus
-    /// underflow (Kahan's algorithm; Jeannerod, Louvet and Muller 2013), the
-    /// form that keeps a quadratic's discriminant accurate when its two
-    /// terms nearly cancel. Backends reach the bound differently (a fused
-    /// multiply-add, exact products in a wider format, or Dekker's exact
-    /// product), so results may differ between backends in the last bit.
-    #[must_use]
-    fn diff_of_products(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
-        let w = c.clone() * d;
-        let e = (-c.clone()).mul_add(d, &w); // c*d - w, exactly
-        let f = a.mul_add(b, &-w);
-        f + &e
-    }
-
     /// `true` unless the value is NaN or infinite.
     fn is_finite(&self) -> bool;
 
@@ -108,15 +94,16 @@ pub trait Real:
 
     /// Unit roundoff `u = 2^-bits`: the largest relative error of one
     /// correctly rounded operation in the normal range.
+    /// (Exact; zero for precisions beyond what an `f64` can represent.)
     #[must_use]
     fn unit_roundoff() -> f64 {
-        (-(Self::bits() as f64)).exp2()
+        power_of_two(-(Self::bits() as i64))
     }
 
     /// Machine epsilon `2^(1 - bits)`: the gap between 1 and the next value.
     #[must_use]
     fn machine_epsilon() -> f64 {
-        (1.0 - Self::bits() as f64).exp2()
+        power_of_two(1 - Self::bits() as i64)
     }
 
     /// The smaller of two values (`self` when they compare equal or
@@ -139,4 +126,11 @@ pub trait Real:
     fn c(x: f64) -> Self {
         Self::from_f64(x)
     }
+}
+
+/// `2^e` exactly, built from its bit pattern (no `exp2` call on the hot
+/// path); zero below the smallest normal `f64`.
+#[inline]
+fn power_of_two(e: i64) -> f64 {
+    if e < -1022 { 0.0 } else { f64::from_bits(((e + 1023) as u64) << 52) }
 }

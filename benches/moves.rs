@@ -1,0 +1,153 @@
+//! Frame moves on the 100,352-triangle terrain (each response, f32 / f64 /
+//! Mpfr<53>), the BVH, the batch API from 1 to 2 threads, and the lab's
+//! throughput per precision.
+//!
+//! Smoke mode: `cargo bench --bench moves -- --test`.
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use std::hint::black_box;
+use std::sync::Arc;
+use sweepslide::geom::{Ellipsoid, Vec3, vec3};
+use sweepslide::lab::scenes::{Scene, Steering, build};
+use sweepslide::lab::{Precision, RunConfig, run};
+use sweepslide::respond::{BodyMove, MoveOptions, Response, move_bodies, move_body};
+use sweepslide::world::{Aabb, Bvh, World};
+use sweepslide::{Mpfr, Real};
+
+/// A ball of radius 0.5 at 5 m/s, 60 Hz, steered over the terrain with
+/// gravity: the starts and velocities of 256 consecutive robust f64 frames,
+/// so every backend replays the same realistic moves.
+fn trajectory(scene: &Scene) -> Vec<([f64; 3], [f64; 3])> {
+    let world = World::<f64>::new(scene.mesh.clone());
+    let body = Ellipsoid::<f64>::new(scene.radii).unwrap();
+    let gravity = vec3::<f64>(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
+    let mut steering = Steering::new(scene, 7);
+    let mut p = vec3::<f64>(scene.start[0], scene.start[1], scene.start[2]);
+    let options = MoveOptions::new(Response::Robust);
+    (0..256)
+        .map(|_| {
+            let v = steering.next(scene);
+            let start = [p.x, p.y, p.z];
+            p = move_body(&world, &body, &p, &vec3(v[0], v[1], v[2]), Some(&gravity), &options).unwrap().position;
+            (start, v)
+        })
+        .collect()
+}
+
+fn moves_in<T: Real>(
+    c: &mut Criterion,
+    scene: &Scene,
+    path: &[([f64; 3], [f64; 3])],
+    group: &str,
+    responses: &[Response],
+) {
+    let world = World::<T>::new(scene.mesh.clone());
+    let body = Ellipsoid::<T>::new(scene.radii).unwrap();
+    let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
+    let inputs: Vec<(Vec3<T>, Vec3<T>)> =
+        path.iter().map(|(p, v)| (vec3(p[0], p[1], p[2]), vec3(v[0], v[1], v[2]))).collect();
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Elements(inputs.len() as u64));
+    for &response in responses {
+        let options = MoveOptions::new(response);
+        g.bench_function(BenchmarkId::new(response.name(), T::name()), |b| {
+            b.iter(|| {
+                for (p, v) in &inputs {
+                    black_box(move_body(&world, &body, p, v, Some(&gravity), &options).unwrap());
+                }
+            })
+        });
+    }
+    g.finish();
+}
+
+fn frame_moves(c: &mut Criterion) {
+    let scene = build("terrain:224", 1).unwrap();
+    let path = trajectory(&scene);
+    moves_in::<f32>(c, &scene, &path, "move_terrain100k", &Response::ALL);
+    moves_in::<f64>(c, &scene, &path, "move_terrain100k", &Response::ALL);
+    moves_in::<Mpfr<53>>(c, &scene, &path[..32], "move_terrain100k_mpfr", &[Response::Robust]);
+    moves_in::<f64>(c, &scene, &path[..32], "move_terrain100k_mpfr", &[Response::Robust]);
+}
+
+fn bvh(c: &mut Criterion) {
+    let scene = build("terrain:224", 1).unwrap();
+    let mesh = &scene.mesh;
+    let boxes: Vec<Aabb> = (0..mesh.len() as u32)
+        .map(|t| {
+            let tri = mesh.triangle(t);
+            let mut b = Aabb::empty();
+            [tri.a, tri.b, tri.c].iter().for_each(|v| b.grow(v));
+            b
+        })
+        .collect();
+    let mut g = c.benchmark_group("bvh_terrain100k");
+    g.sample_size(10);
+    g.bench_function("build", |b| b.iter(|| black_box(Bvh::build(&boxes))));
+    let world = World::<f32>::new(mesh.clone());
+    let path = trajectory(&scene);
+    let mut out = Vec::new();
+    g.bench_function("query_frame_box", |b| {
+        b.iter(|| {
+            for (p, _) in &path {
+                let (lo, hi) =
+                    (vec3::<f32>(p[0] - 0.6, p[1] - 0.6, p[2] - 0.6), vec3::<f32>(p[0] + 0.6, p[1] + 0.6, p[2] + 0.6));
+                world.candidates(&lo, &hi, &mut out);
+                black_box(out.len());
+            }
+        })
+    });
+    g.finish();
+}
+
+fn batch(c: &mut Criterion) {
+    let scene = build("terrain:224", 1).unwrap();
+    let world = World::<f32>::new(scene.mesh.clone());
+    let path = trajectory(&scene);
+    let body = Ellipsoid::<f32>::new(scene.radii).unwrap();
+    let gravity = Some(vec3::<f32>(0.0, scene.gravity[1], 0.0));
+    let bodies: Vec<BodyMove<f32>> = (0..10_000)
+        .map(|i| {
+            let (p, v) = path[i % path.len()];
+            let shift = (i / path.len()) as f64 * 0.37;
+            BodyMove {
+                body: body.clone(),
+                position: vec3(p[0] + shift, p[1] + 1.0, p[2]),
+                velocity: vec3(v[0], v[1], v[2]),
+                gravity,
+            }
+        })
+        .collect();
+    let options = MoveOptions::new(Response::Robust);
+    let mut g = c.benchmark_group("batch_10000_bodies");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(bodies.len() as u64));
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        g.bench_function(BenchmarkId::new("threads", threads), |b| {
+            b.iter(|| pool.install(|| black_box(move_bodies(&world, &bodies, &options))))
+        });
+    }
+    g.finish();
+}
+
+fn lab_throughput(c: &mut Criterion) {
+    let scene = Arc::new({
+        let mut s = build("corner", 1).unwrap();
+        s.frames = 50;
+        s
+    });
+    let mut g = c.benchmark_group("lab_frames_corner");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(scene.frames as u64));
+    for precision in [Precision::F32, Precision::F64, Precision::Mpfr(24), Precision::Mpfr(53), Precision::Mpfr(113)] {
+        let cfg = RunConfig { scene: scene.clone(), response: Response::Robust, detection: None, precision, seed: 1 };
+        g.bench_function(BenchmarkId::new("robust", precision.to_string()), |b| {
+            b.iter(|| black_box(run(&cfg).unwrap()))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, frame_moves, bvh, batch, lab_throughput);
+criterion_main!(benches);

@@ -1,0 +1,448 @@
+//! Analytic tests of the sphere-vs-triangle detection with exact expected
+//! answers, one suite instantiated by a macro for every backend (`f32`,
+//! `f64`, `Mpfr<24>`, `Mpfr<53>`, `Mpfr<256>`) and, where the case is
+//! meaningful for it, for both variants ([`Detection::Fauerby`] and
+//! [`Detection::Robust`]).
+//!
+//! The inputs are chosen so that the answers are exactly representable
+//! (times such as 0.5 and 0.375, axis-aligned normals): those are checked
+//! for equality. Where an answer involves a square root, the expected value
+//! is evaluated in the backend itself with a handful of correctly rounded
+//! operations and compared within `64 u` (`u` the backend's unit roundoff),
+//! a bound the computation meets with a wide margin and that a wrong
+//! formula misses by many orders of magnitude.
+//!
+//! The unit sphere lives in eSpace: centre `base`, moving by `vel` over
+//! `t in [0, 1]`. Two triangles serve most cases:
+//! * `face_tri`: `(-2,-2,0) (2,-2,0) (0,2,0)` in the plane `z = 0`, front
+//!   face `+z`; edge 0 is the segment `y = -2`, `x in [-2, 2]`.
+//! * `vertex_tri`: `(4,-2,0) (2,0,0) (4,2,0)` in `z = 0`, vertex 1 at
+//!   `(2,0,0)` pointing towards `-x`; its edges leave that vertex at 45
+//!   degrees, backwards, so a sphere coming along `-x` touches the vertex
+//!   first.
+
+use std::sync::Arc;
+use sweepslide::Real;
+use sweepslide::detect::{Candidate, DetectOptions, Detection, Hit, sweep_world};
+use sweepslide::geom::{Ellipsoid, Feature, Triangle, Vec3, vec3};
+use sweepslide::world::{TriangleMesh, World};
+
+const VARIANTS: [Detection; 2] = [Detection::Fauerby, Detection::Robust];
+
+fn v<T: Real>(p: [f64; 3]) -> Vec3<T> {
+    vec3(p[0], p[1], p[2])
+}
+
+fn tri<T: Real>(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Triangle<T> {
+    Triangle::new(v(a), v(b), v(c))
+}
+
+fn face_tri<T: Real>() -> Triangle<T> {
+    tri([-2.0, -2.0, 0.0], [2.0, -2.0, 0.0], [0.0, 2.0, 0.0])
+}
+
+fn vertex_tri<T: Real>() -> Triangle<T> {
+    tri([4.0, -2.0, 0.0], [2.0, 0.0, 0.0], [4.0, 2.0, 0.0])
+}
+
+/// Runs `d` on one triangle (index 7, to check it is passed through).
+fn sweep<T: Real>(d: Detection, t: &Triangle<T>, base: [f64; 3], vel: [f64; 3]) -> Option<Hit<T>> {
+    sweep_opts(d, t, base, vel, &DetectOptions::default())
+}
+
+fn sweep_opts<T: Real>(
+    d: Detection,
+    t: &Triangle<T>,
+    base: [f64; 3],
+    vel: [f64; 3],
+    opts: &DetectOptions,
+) -> Option<Hit<T>> {
+    d.sweep(&Candidate::lone(7, t.clone()), &v(base), &v(vel), opts, None)
+}
+
+fn show<T: Real>(x: &Vec3<T>) -> [f64; 3] {
+    [x.x.to_f64(), x.y.to_f64(), x.z.to_f64()]
+}
+
+/// Asserts `hit` is exactly the expected contact.
+#[track_caller]
+fn assert_exact<T: Real>(
+    what: &str,
+    hit: Option<Hit<T>>,
+    t: f64,
+    point: [f64; 3],
+    normal: [f64; 3],
+    feature: Feature,
+    overlapping: bool,
+) {
+    let name = T::name();
+    let Some(h) = hit else { panic!("{what} [{name}]: expected a hit at t = {t}, got none") };
+    assert!(h.t == T::from_f64(t), "{what} [{name}]: t = {:?}, expected {t}", h.t);
+    assert!(h.point == v::<T>(point), "{what} [{name}]: point = {:?}, expected {point:?}", show(&h.point));
+    assert!(h.normal == v::<T>(normal), "{what} [{name}]: normal = {:?}, expected {normal:?}", show(&h.normal));
+    assert_eq!(h.feature, feature, "{what} [{name}]: feature");
+    assert_eq!(h.triangle, 7, "{what} [{name}]: triangle index");
+    assert_eq!(h.started_overlapping, overlapping, "{what} [{name}]: started_overlapping");
+}
+
+/// `|got - want| <= ulps * u * scale` in the backend's own arithmetic.
+#[track_caller]
+fn assert_close<T: Real>(what: &str, got: &T, want: &T, ulps: f64, scale: f64) {
+    let tol = T::from_f64(ulps * T::unit_roundoff() * scale);
+    let err = (got.clone() - want).abs();
+    assert!(err <= tol, "{what} [{}]: got {:?}, expected {:?} (error {:?} > {:?})", T::name(), got, want, err, tol);
+}
+
+#[track_caller]
+fn assert_close_vec<T: Real>(what: &str, got: &Vec3<T>, want: &Vec3<T>, ulps: f64, scale: f64) {
+    for i in 0..3 {
+        assert_close(&format!("{what}[{i}]"), &got[i], &want[i], ulps, scale);
+    }
+}
+
+#[track_caller]
+fn assert_none<T: Real>(what: &str, hit: Option<Hit<T>>) {
+    assert!(hit.is_none(), "{what} [{}]: expected no hit, got {hit:?}", T::name());
+}
+
+// ---------------------------------------------------------------- cases --
+
+/// Straight down onto the middle of the face: the sphere (centre z = 3)
+/// touches the plane z = 0 when its centre is at z = 1, t = 2/4.
+fn face_hit<T: Real>(d: Detection) {
+    let hit = sweep::<T>(d, &face_tri(), [0.0, 0.0, 3.0], [0.0, 0.0, -4.0]);
+    assert_exact(d.name(), hit, 0.5, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], Feature::Face, false);
+}
+
+/// Along `+y` in the triangle's plane onto edge 0 (y = -2): the centre
+/// reaches y = -3 at t = 0.5, touching the edge's midpoint. Fauerby takes
+/// his `nv == 0` ("embedded") branch here.
+fn edge_hit_in_plane<T: Real>(d: Detection) {
+    let hit = sweep::<T>(d, &face_tri(), [0.0, -5.0, 0.0], [0.0, 4.0, 0.0]);
+    assert_exact(d.name(), hit, 0.5, [0.0, -2.0, 0.0], [0.0, -1.0, 0.0], Feature::Edge(0), false);
+}
+
+/// Diagonally down and towards the triangle, from outside edge 0: the face
+/// plane is reached first (t = 0.25) but outside the triangle; the path in
+/// the (y, z) plane enters the unit disc around the edge exactly at
+/// (y, z) = (-3, 0) at t = 0.5 (its direction (1, -1) points into the disc
+/// there), so the contact normal is exactly -y.
+fn edge_hit_oblique<T: Real>(d: Detection) {
+    let hit = sweep::<T>(d, &face_tri(), [0.0, -5.0, 2.0], [0.0, 4.0, -4.0]);
+    assert_exact(d.name(), hit, 0.5, [0.0, -2.0, 0.0], [0.0, -1.0, 0.0], Feature::Edge(0), false);
+}
+
+/// Along `+x` onto vertex 1 of `vertex_tri`: the centre reaches x = 1 at
+/// t = 0.5. The edges' infinite lines are closer than 1 earlier
+/// (t ~ 0.396), but those touch points lie beyond the vertex, off the
+/// segments: a test that forgets the segment check fails here.
+fn vertex_hit<T: Real>(d: Detection) {
+    let hit = sweep::<T>(d, &vertex_tri(), [-1.0, 0.0, 0.0], [4.0, 0.0, 0.0]);
+    assert_exact(d.name(), hit, 0.5, [2.0, 0.0, 0.0], [-1.0, 0.0, 0.0], Feature::Vertex(1), false);
+}
+
+/// The same vertex passed sideways at distance 1 + 2^-10 (the path
+/// x = 1 - 2^-10 along +y): no contact.
+fn grazing_miss_vertex<T: Real>(d: Detection) {
+    let x = 1.0 - 2f64.powi(-10);
+    assert_none(d.name(), sweep::<T>(d, &vertex_tri(), [x, -2.0, 0.0], [0.0, 4.0, 0.0]));
+    // Control: 2^-10 closer it touches the vertex.
+    let hit = sweep::<T>(d, &vertex_tri(), [1.0 + 2f64.powi(-10), -2.0, 0.0], [0.0, 4.0, 0.0]);
+    assert!(hit.is_some_and(|h| h.feature == Feature::Vertex(1)), "{} [{}]: control should hit", d.name(), T::name());
+}
+
+/// Parallel to edge 0, beside and below it: the path (y, z) = (-2.75,
+/// -0.75) stays sqrt(2) * 0.75 ~ 1.06 from the edge (and from vertices 0
+/// and 1), while its distance to the face's plane is only 0.75.
+fn grazing_miss_edge<T: Real>(d: Detection) {
+    assert_none(d.name(), sweep::<T>(d, &face_tri(), [-5.0, -2.75, -0.75], [10.0, 0.0, 0.0]));
+}
+
+/// Parallel to the face at height 1.5 right over it: no contact.
+fn parallel_far<T: Real>(d: Detection) {
+    assert_none(d.name(), sweep::<T>(d, &face_tri(), [-5.0, 0.0, 1.5], [10.0, 0.0, 0.0]));
+    assert_none(d.name(), sweep::<T>(d, &face_tri(), [0.0, -6.0, -1.5], [0.0, 10.0, 0.0]));
+}
+
+/// Parallel to the face at height 0.5, coming from outside the triangle
+/// (y = -5) towards edge 0 (y = -2): the sphere cuts the plane the whole
+/// time but first touches the triangle on the edge, when
+/// (y + 2)^2 + 0.5^2 = 1, i.e. t = (3 - sqrt(3/4)) / 4. Contact at
+/// (0, -2, 0), normal (0, -sqrt(3/4), 1/2).
+fn parallel_near_edge<T: Real>(d: Detection) {
+    let hit = sweep::<T>(d, &face_tri(), [0.0, -5.0, 0.5], [0.0, 4.0, 0.0]);
+    let what = d.name();
+    let Some(h) = hit else { panic!("{what} [{}]: expected an edge hit", T::name()) };
+    let root = T::from_f64(0.75).sqrt();
+    let t = (T::from_f64(3.0) - &root) / T::from_f64(4.0);
+    assert_close(what, &h.t, &t, 64.0, 1.0);
+    assert_close_vec(what, &h.point, &v([0.0, -2.0, 0.0]), 64.0, 2.0);
+    let normal = Vec3::new(T::zero(), -root, T::from_f64(0.5));
+    assert_close_vec(what, &h.normal, &normal, 64.0, 1.0);
+    assert_eq!(h.feature, Feature::Edge(0), "{what}");
+    assert!(!h.started_overlapping, "{what}");
+}
+
+/// Zero velocity. Robust: `None` both far away and overlapping (a hit at
+/// t = 0 is reported only when the motion approaches). Fauerby: `None`
+/// because normalising the zero velocity gives NaN, which fails his
+/// front-facing test.
+fn zero_velocity<T: Real>(d: Detection) {
+    assert_none(d.name(), sweep::<T>(d, &face_tri(), [0.0, 0.0, 3.0], [0.0, 0.0, 0.0]));
+    assert_none(d.name(), sweep::<T>(d, &face_tri(), [0.0, 0.0, 0.5], [0.0, 0.0, 0.0]));
+    assert_none(d.name(), sweep::<T>(d, &vertex_tri(), [1.5, 0.0, 0.0], [0.0, 0.0, 0.0]));
+}
+
+/// Robust only: starting embedded in the face, 0.5 above it, moving down:
+/// t = 0, started_overlapping, the separating normal +z, the contact at the
+/// closest point. From below (two-sided) the normal is -z. Moving away:
+/// no hit.
+fn robust_embedded_face<T: Real>() {
+    let r = Detection::Robust;
+    let hit = sweep::<T>(r, &face_tri(), [0.0, 0.0, 0.5], [0.0, 0.0, -1.0]);
+    assert_exact("above, moving down", hit, 0.0, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], Feature::Face, true);
+    let hit = sweep::<T>(r, &face_tri(), [0.0, 0.0, -0.5], [0.0, 0.0, 1.0]);
+    assert_exact("below, moving up", hit, 0.0, [0.0, 0.0, 0.0], [0.0, 0.0, -1.0], Feature::Face, true);
+    // Sliding along the face while embedded still approaches a little.
+    let hit = sweep::<T>(r, &face_tri(), [0.0, 0.0, 0.5], [4.0, 0.0, -1.0]);
+    assert_exact("above, sliding down", hit, 0.0, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], Feature::Face, true);
+    assert_none("above, moving up", sweep::<T>(r, &face_tri(), [0.0, 0.0, 0.5], [0.0, 0.0, 1.0]));
+    assert_none("below, moving down", sweep::<T>(r, &face_tri(), [0.0, 0.0, -0.5], [0.0, 0.0, -1.0]));
+    assert_none("above, sliding sideways", sweep::<T>(r, &face_tri(), [0.0, 0.0, 0.5], [1.0, 0.0, 0.0]));
+}
+
+/// Robust only: embedded in a vertex (centre 0.5 from it) and exactly
+/// touching it (centre 1 from it) at the start.
+fn robust_embedded_vertex<T: Real>() {
+    let r = Detection::Robust;
+    let hit = sweep::<T>(r, &vertex_tri(), [1.5, 0.0, 0.0], [4.0, 0.0, 0.0]);
+    assert_exact("vertex, overlapping", hit, 0.0, [2.0, 0.0, 0.0], [-1.0, 0.0, 0.0], Feature::Vertex(1), true);
+    assert_none("vertex, overlapping, leaving", sweep::<T>(r, &vertex_tri(), [1.5, 0.0, 0.0], [-4.0, 0.0, 0.0]));
+    let hit = sweep::<T>(r, &vertex_tri(), [1.0, 0.0, 0.0], [4.0, 0.0, 0.0]);
+    assert_exact("vertex, touching", hit, 0.0, [2.0, 0.0, 0.0], [-1.0, 0.0, 0.0], Feature::Vertex(1), false);
+    assert_none("vertex, touching, leaving", sweep::<T>(r, &vertex_tri(), [1.0, 0.0, 0.0], [-4.0, 0.0, 0.0]));
+    // Embedded in edge 0 of face_tri (0.5 from it, outside the face).
+    let hit = sweep::<T>(r, &face_tri(), [0.0, -2.5, 0.0], [0.0, 1.0, 0.0]);
+    assert_exact("edge, overlapping", hit, 0.0, [0.0, -2.0, 0.0], [0.0, -1.0, 0.0], Feature::Edge(0), true);
+}
+
+/// Robust only: the back face is solid by default and culled with
+/// `two_sided: false`.
+fn robust_two_sided<T: Real>() {
+    let r = Detection::Robust;
+    let hit = sweep::<T>(r, &face_tri(), [0.0, 0.0, -3.0], [0.0, 0.0, 4.0]);
+    assert_exact("from below", hit, 0.5, [0.0, 0.0, 0.0], [0.0, 0.0, -1.0], Feature::Face, false);
+    let one_sided = DetectOptions { two_sided: false, ..DetectOptions::default() };
+    assert_none(
+        "from below, one-sided",
+        sweep_opts::<T>(r, &face_tri(), [0.0, 0.0, -3.0], [0.0, 0.0, 4.0], &one_sided),
+    );
+    let hit = sweep_opts::<T>(r, &face_tri(), [0.0, 0.0, 3.0], [0.0, 0.0, -4.0], &one_sided);
+    assert_exact("from above, one-sided", hit, 0.5, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], Feature::Face, false);
+}
+
+/// A motion that ends before the contact (t would be 1.25): no hit; one
+/// that ends exactly at the contact: t = 1.
+fn end_of_motion<T: Real>(d: Detection) {
+    assert_none(d.name(), sweep::<T>(d, &face_tri(), [0.0, 0.0, 3.0], [0.0, 0.0, -1.6]));
+    assert_none(d.name(), sweep::<T>(d, &vertex_tri(), [-1.0, 0.0, 0.0], [1.5, 0.0, 0.0]));
+    let hit = sweep::<T>(d, &face_tri(), [0.0, 0.0, 3.0], [0.0, 0.0, -2.0]);
+    assert_exact(d.name(), hit, 1.0, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0], Feature::Face, false);
+}
+
+// ------------------------------------------------------------ the world --
+
+/// Index 0: a wall at x = 7 (hit later); 1 and 2: the square
+/// x = 5, |y|, |z| <= 2 split along its diagonal through (5, 0, 0); 3: a
+/// floor far below. All front faces point towards -x (or +z).
+/// Everything moved by `offset`.
+fn wall_mesh(offset: [f64; 3]) -> Arc<TriangleMesh> {
+    let vertices: Vec<[f64; 3]> = vec![
+        [7.0, -3.0, -3.0],
+        [7.0, 0.0, 3.0],
+        [7.0, 3.0, -3.0],
+        [5.0, -2.0, -2.0],
+        [5.0, 2.0, -2.0],
+        [5.0, 2.0, 2.0],
+        [5.0, -2.0, 2.0],
+        [-10.0, -10.0, -9.0],
+        [10.0, -10.0, -9.0],
+        [0.0, 10.0, -9.0],
+    ];
+    let vertices = vertices.into_iter().map(|p| std::array::from_fn(|i| p[i] + offset[i])).collect();
+    let triangles = vec![[0, 1, 2], [3, 5, 4], [3, 6, 5], [7, 8, 9]];
+    Arc::new(TriangleMesh::new(vertices, triangles).expect("valid mesh"))
+}
+
+/// The ellipsoid with radii (2, 1, 1) at the origin moving by (8, 0, 0):
+/// in eSpace the wall is at x = 2.5 and the unit sphere moves by 4, so it
+/// touches at t = 1.5 / 4 = 0.375, at the world point (5, 0, 0) (on the
+/// diagonal shared by triangles 1 and 2: a tie, won by the lower index),
+/// with world normal -x.
+fn world_ellipsoid_wall_tie<T: Real>(d: Detection) {
+    let world = World::<T>::new(wall_mesh([0.0; 3]));
+    let body = Ellipsoid::<T>::new([2.0, 1.0, 1.0]).expect("valid radii");
+    let opts = DetectOptions::default();
+    let hit = sweep_world(&world, &body, &v([0.0, 0.0, 0.0]), &v([8.0, 0.0, 0.0]), d, &opts).expect("finite input");
+    let what = d.name();
+    let Some(h) = hit else { panic!("{what} [{}]: expected a hit", T::name()) };
+    assert!(h.t == T::from_f64(0.375), "{what} [{}]: t = {:?}", T::name(), h.t);
+    assert!(h.point == v::<T>([5.0, 0.0, 0.0]), "{what} [{}]: point {:?}", T::name(), show(&h.point));
+    assert!(h.normal == v::<T>([-1.0, 0.0, 0.0]), "{what} [{}]: normal {:?}", T::name(), show(&h.normal));
+    assert_eq!(h.triangle, 1, "{what} [{}]: tie to the lowest index", T::name());
+    // Moved away from the world origin by 1024 (exact in every backend):
+    // the same answer, relative to the new start.
+    let world = World::<T>::new(wall_mesh([1024.0, -1024.0, 1024.0]));
+    let start = v([1024.0, -1024.0, 1024.0]);
+    let hit = sweep_world(&world, &body, &start, &v([8.0, 0.0, 0.0]), d, &opts).expect("finite input");
+    let Some(h) = hit else { panic!("{what} [{}]: expected a hit far away", T::name()) };
+    assert!(h.t == T::from_f64(0.375), "{what} [{}]: far t = {:?}", T::name(), h.t);
+    assert!(h.point == v::<T>([1029.0, -1024.0, 1024.0]), "{what} [{}]: far point {:?}", T::name(), show(&h.point));
+    assert_eq!(h.triangle, 1, "{what} [{}]: far tie", T::name());
+    // Going the other way: nothing (the floor is 8 radii below).
+    let miss = sweep_world(&world, &body, &start, &v([-8.0, 0.0, 0.0]), d, &opts).expect("finite input");
+    assert_none(what, miss);
+}
+
+/// The same ellipsoid against the slanted wall x + y = 4 (world normal
+/// (1, 1, 0)/sqrt 2). The ellipsoid's support point towards the wall is
+/// R^2 n / |R n| = (4, 1, 0)/sqrt 5 from its centre and n . R^2 n / |R n|
+/// = |R n| = sqrt(5/2), so it touches when 8t / sqrt 2 + sqrt(5/2) =
+/// 4 / sqrt 2, at t = (4 - sqrt 5)/8, at the world point
+/// (4 - sqrt 5 + 4/sqrt 5, 1/sqrt 5, 0), with the world normal -(1, 1, 0)/sqrt 2 (from the wall
+/// towards the body: the eSpace normal mapped back, not the eSpace normal).
+fn world_ellipsoid_slanted<T: Real>(d: Detection) {
+    let mesh = TriangleMesh::new(vec![[-6.0, 10.0, -10.0], [14.0, -10.0, -10.0], [4.0, 0.0, 10.0]], vec![[0, 1, 2]])
+        .expect("valid mesh");
+    let world = World::<T>::new(Arc::new(mesh));
+    let body = Ellipsoid::<T>::new([2.0, 1.0, 1.0]).expect("valid radii");
+    let hit = sweep_world(&world, &body, &v([0.0, 0.0, 0.0]), &v([8.0, 0.0, 0.0]), d, &DetectOptions::default())
+        .expect("finite input");
+    let what = d.name();
+    let Some(h) = hit else { panic!("{what} [{}]: expected a hit", T::name()) };
+    let s5 = T::from_f64(5.0).sqrt();
+    let t = (T::from_f64(4.0) - &s5) / T::from_f64(8.0);
+    assert_close(what, &h.t, &t, 64.0, 1.0);
+    let x = T::from_f64(4.0) - &s5 + T::from_f64(4.0) / &s5;
+    let y = T::one() / &s5;
+    assert_close_vec(what, &h.point, &Vec3::new(x, y, T::zero()), 64.0, 8.0);
+    let c = -(T::one() / T::from_f64(2.0).sqrt());
+    assert_close_vec(what, &h.normal, &Vec3::new(c.clone(), c, T::zero()), 64.0, 1.0);
+    assert_eq!(h.feature, Feature::Face, "{what}");
+    assert_eq!(h.triangle, 0, "{what}");
+}
+
+/// A non-finite position or velocity is an error, not a NaN hit.
+fn world_rejects_non_finite<T: Real>() {
+    let world = World::<T>::new(wall_mesh([0.0; 3]));
+    let body = Ellipsoid::<T>::sphere(1.0).expect("valid radius");
+    let opts = DetectOptions::default();
+    for d in VARIANTS {
+        let bad_vel = sweep_world(&world, &body, &v([0.0; 3]), &v([f64::NAN, 0.0, 0.0]), d, &opts);
+        assert!(bad_vel.is_err(), "{} [{}]: NaN velocity accepted", d.name(), T::name());
+        let bad_pos = sweep_world(&world, &body, &v([f64::INFINITY, 0.0, 0.0]), &v([1.0, 0.0, 0.0]), d, &opts);
+        assert!(bad_pos.is_err(), "{} [{}]: infinite position accepted", d.name(), T::name());
+    }
+}
+
+/// Tests that run a generic case for Fauerby and for Robust, in backend `B`.
+macro_rules! both {
+    ($($case:ident),* $(,)?) => {$(
+        #[test]
+        fn $case() {
+            for d in VARIANTS {
+                super::$case::<B>(d);
+            }
+        }
+    )*};
+}
+
+/// One module per backend, each with the whole suite.
+macro_rules! suite {
+    ($module:ident, $t:ty) => {
+        mod $module {
+            use super::*;
+            type B = $t;
+
+            both!(
+                face_hit,
+                edge_hit_in_plane,
+                edge_hit_oblique,
+                vertex_hit,
+                grazing_miss_vertex,
+                grazing_miss_edge,
+                parallel_far,
+                parallel_near_edge,
+                zero_velocity,
+                end_of_motion,
+                world_ellipsoid_wall_tie,
+                world_ellipsoid_slanted,
+            );
+
+            #[test]
+            fn robust_embedded_face() {
+                super::robust_embedded_face::<B>();
+            }
+
+            #[test]
+            fn robust_embedded_vertex() {
+                super::robust_embedded_vertex::<B>();
+            }
+
+            #[test]
+            fn robust_two_sided() {
+                super::robust_two_sided::<B>();
+            }
+
+            #[test]
+            fn world_rejects_non_finite() {
+                super::world_rejects_non_finite::<B>();
+            }
+        }
+    };
+}
+
+suite!(f32_backend, f32);
+suite!(f64_backend, f64);
+suite!(mpfr24, sweepslide::Mpfr<24>);
+suite!(mpfr53, sweepslide::Mpfr<53>);
+suite!(mpfr256, sweepslide::Mpfr<256>);
+
+/// The bits of every result of a fixed set of sweeps (both variants, both
+/// triangles, hits and misses), for comparing backends.
+type Key = Option<(u64, [u64; 3], [u64; 3], Feature, bool)>;
+
+fn result_bits<T: Real>() -> Vec<Key> {
+    let cases: [([f64; 3], [f64; 3]); 8] = [
+        ([0.0, 0.0, 3.0], [0.0, 0.0, -4.0]),
+        ([0.0, -5.0, 2.0], [0.0, 4.0, -4.0]),
+        ([0.0, -5.0, 0.5], [0.0, 4.0, 0.0]),
+        ([0.3, -4.1, 0.7], [0.1, 3.9, -0.3]),
+        ([-1.0, 0.1, 0.2], [4.0, -0.05, 0.01]),
+        ([1.1, 0.3, -0.6], [1.0, 0.0, 0.3]),
+        ([0.0, 0.0, 0.5], [0.0, 0.0, -1.0]),
+        ([1.5, 0.0, 0.0], [4.0, 0.0, 0.0]),
+    ];
+    let mut out = Vec::new();
+    for (base, vel) in cases {
+        for d in VARIANTS {
+            for t in [face_tri::<T>(), vertex_tri::<T>()] {
+                out.push(sweep(d, &t, base, vel).map(|h| {
+                    let bits = |x: &Vec3<T>| show(x).map(f64::to_bits);
+                    (h.t.to_f64().to_bits(), bits(&h.point), bits(&h.normal), h.feature, h.started_overlapping)
+                }));
+            }
+        }
+    }
+    out
+}
+
+/// `Mpfr<24>` and `Mpfr<53>` reproduce `f32` and `f64` bit for bit on
+/// detection (the backend's promise; the lab's precision dial relies on it).
+#[test]
+fn mpfr_matches_hardware_floats_bit_for_bit() {
+    let f32_bits = result_bits::<f32>();
+    assert!(f32_bits.iter().filter(|k| k.is_some()).count() >= 10, "the cases should mostly hit");
+    assert_eq!(f32_bits, result_bits::<sweepslide::Mpfr<24>>(), "f32 vs Mpfr<24>");
+    assert_eq!(result_bits::<f64>(), result_bits::<sweepslide::Mpfr<53>>(), "f64 vs Mpfr<53>");
+}
