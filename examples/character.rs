@@ -1,5 +1,5 @@
 //! A character controller loop, as a game would write it: an ellipsoid
-//! character walks through a small level (floor, walls, a ramp and a pillar)
+//! character walks through a small level (floor, walls, a ramp and two pillars)
 //! steered by scripted input, with gravity, using the robust response in
 //! `f32` and no MPFR.
 //!
@@ -10,7 +10,7 @@ use sweepslide::geom::{Ellipsoid, Vec3, vec3};
 use sweepslide::respond::{MoveOptions, Response, move_body};
 use sweepslide::world::{TriangleMesh, World};
 
-/// A level: a 20 x 20 floor, four walls, a ramp up to a ledge, one pillar.
+/// A level: a 20 x 20 floor, four walls, a ramp up to a ledge, two pillars.
 fn level() -> Result<TriangleMesh, sweepslide::Error> {
     let mut vertices: Vec<[f64; 3]> = Vec::new();
     let mut triangles = Vec::new();
@@ -29,7 +29,7 @@ fn level() -> Result<TriangleMesh, sweepslide::Error> {
     quad([[w, 0.0, -w], [w, 0.0, w], [w, h, w], [w, h, -w]]);
     quad([[2.0, 0.0, -2.0], [2.0, 0.0, 2.0], [6.0, 1.0, 2.0], [6.0, 1.0, -2.0]]); // ramp, up
     quad([[6.0, 1.0, -2.0], [6.0, 1.0, 2.0], [w, 1.0, 2.0], [w, 1.0, -2.0]]); // ledge, up
-    for (x0, z0, x1, z1) in [(-3.0, -3.0, -2.0, -2.0)] {
+    for (x0, z0, x1, z1) in [(-3.0, -3.0, -2.0, -2.0), (3.0, 5.0, 4.0, 6.0)] {
         quad([[x0, 0.0, z0], [x1, 0.0, z0], [x1, h, z0], [x0, h, z0]]); // pillar, outward
         quad([[x1, 0.0, z1], [x0, 0.0, z1], [x0, h, z1], [x1, h, z1]]);
         quad([[x0, 0.0, z1], [x0, 0.0, z0], [x0, h, z0], [x0, h, z1]]);

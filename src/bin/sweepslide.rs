@@ -220,7 +220,7 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
     Ok(scene)
 }
 
-fn write_trace(path: &PathBuf, out: &RunOutput) -> Result<(), Error> {
+fn write_trace(path: &std::path::Path, out: &RunOutput) -> Result<(), Error> {
     let mut csv = String::from("frame,x,y,z,penetration,iterations,stop,flip\n");
     for f in &out.frames {
         let pen = f.penetration.map_or(String::new(), |p| format!("{p:e}"));
@@ -230,7 +230,7 @@ fn write_trace(path: &PathBuf, out: &RunOutput) -> Result<(), Error> {
             f.frame, f.position[0], f.position[1], f.position[2], pen, f.iterations, stop, f.flip
         );
     }
-    std::fs::write(path, csv).map_err(|e| Error::Io { path: path.clone(), message: e.to_string() })
+    std::fs::write(path, csv).map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })
 }
 
 fn run_command(args: &RunArgs) -> Result<(), Failure> {
@@ -327,7 +327,7 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
         let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         match &bar {
             Some(b) => b.inc(1),
-            None if n % 50 == 0 || n == total => {
+            None if n.is_multiple_of(50) || n == total => {
                 eprintln!("  {n}/{total} runs done ({:.0} s)", clock.elapsed().as_secs_f64())
             }
             None => {}
@@ -351,7 +351,7 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-fn merge_command(out: &PathBuf, shards: &[PathBuf]) -> Result<(), Failure> {
+fn merge_command(out: &std::path::Path, shards: &[PathBuf]) -> Result<(), Failure> {
     use sweepslide::report::{merge, read_runs, render, write_runs};
     let parts = shards.iter().map(|d| read_runs(d)).collect::<Result<Vec<_>, _>>()?;
     let runs = merge(parts)?;

@@ -164,10 +164,10 @@ fn main_runs<'a>(
 pub fn scene_names(runs: &Runs) -> Vec<String> {
     let mut names: Vec<String> = Vec::new();
     for r in &runs.records {
-        if let (Group::Main, Ok(o)) = (r.entry.group, &r.outcome) {
-            if !names.contains(&o.scene) {
-                names.push(o.scene.clone());
-            }
+        if let (Group::Main, Ok(o)) = (r.entry.group, &r.outcome)
+            && !names.contains(&o.scene)
+        {
+            names.push(o.scene.clone());
         }
     }
     names
@@ -310,7 +310,7 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
     let series: Vec<Series> = RESPONSES
         .iter()
         .map(|resp| {
-            let mut counts = vec![0usize; 17];
+            let mut counts = [0usize; 17];
             for (_, o, frames) in main_runs(runs, "f32").filter(|(_, o, _)| o.response == *resp) {
                 let _ = o;
                 for f in frames {

@@ -39,10 +39,10 @@
 //! capped at `max_padding`, where `u` is the unit roundoff, `s` the
 //! magnitude of the relative coordinates the contact was computed from (the
 //! distance to the triangle's nearest vertex and the displacement, at least
-//! 1) and `|start|` the largest eSpace
-//! coordinate of the frame's start (which bounds the rounding of the final
-//! `start + displacement`). In `f32` at the origin that is about `1e-5`,
-//! in `f64` about `3e-14`, at `1e5` in `f32` about `0.03` (eSpace units).
+//! one) and `|start|` the largest eSpace coordinate of the frame's start
+//! (which bounds the rounding of the final `start + displacement`). In `f32`
+//! at the origin that is about `3e-6`, in `f64` about `5e-15`, at `1e5` in
+//! `f32` about `0.024` (eSpace units).
 //!
 //! A body that starts embedded is first pushed out along the separating
 //! direction of its deepest overlap (up to `depenetration_rounds` times).

@@ -142,8 +142,8 @@ impl Adjacency {
                         bits |= 1 << e;
                     }
                 }
-                for v in 0..3 {
-                    let around = self.triangles_around(triangles[t][v]);
+                for (v, &corner) in triangles[t].iter().enumerate() {
+                    let around = self.triangles_around(corner);
                     if !around.iter().all(|&o| n.dot(&normal(o as usize)).abs() >= cos_min) {
                         bits |= 8 << v;
                     }
