@@ -205,6 +205,17 @@ pub fn sweep_robust<T: Real>(
             return None;
         }
     }
+    // Quick rejection from the precomputed normal and vertex a alone: the
+    // centre stays farther than `reach` from the plane on one side for the
+    // whole sweep (the `1e-3` margin dwarfs this estimate's rounding).
+    if let Some(n) = &c.normal {
+        let d0 = dot(n, &(base - &c.triangle.a));
+        let d1 = d0.clone() + dot(n, vel);
+        let (lo, hi) = if d0 < d1 { (d0, d1) } else { (d1, d0) };
+        if lo > reach || hi < -reach.clone() || (!opts.two_sided && hi < zero) {
+            return None;
+        }
+    }
     let rel = c.triangle.relative_to(base);
     let p = [&rel.a, &rel.b, &rel.c];
     let mut normal = c.normal.clone();

@@ -176,6 +176,9 @@ pub(crate) struct Frame<'w, T: Real> {
     pub trace: Trace<T>,
     /// This frame's displacements (velocity, gravity), world space.
     pub moves: [Vec3<T>; 2],
+    /// The largest eSpace coordinate of the frame's start, for the robust
+    /// padding (computed once per frame).
+    pub start_magnitude: f64,
 }
 
 impl<T: Real> Frame<'_, T> {
@@ -234,8 +237,17 @@ pub fn move_body<T: Real>(
     let hood = Neighbourhood::gather(world, body, origin.clone(), &min, &max, &mut scratch);
     let trace = Trace { iterations: 0, contacts: Vec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
     let moves = [velocity.clone(), gravity.clone()];
-    let mut frame =
-        Frame { world, body, detection: options.effective_detection(), detect: &options.detect, hood, trace, moves };
+    let start_magnitude = body.to_espace(position).iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max);
+    let mut frame = Frame {
+        world,
+        body,
+        detection: options.effective_detection(),
+        detect: &options.detect,
+        hood,
+        trace,
+        moves,
+        start_magnitude,
+    };
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();
     if options.response == Response::Robust {

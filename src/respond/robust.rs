@@ -104,8 +104,7 @@ fn padding<T: Real>(frame: &Frame<'_, T>, p: &Vec3<T>, w: &Vec3<T>, tri: &Triang
     let u = T::unit_roundoff();
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
     let s = magnitude(w).max(nearest).max(1.0);
-    let start = magnitude(&frame.body.to_espace(&frame.hood.origin));
-    T::c((opts.padding_ulps * u * s + opts.position_ulps * u * start).min(opts.max_padding))
+    T::c((opts.padding_ulps * u * s + opts.position_ulps * u * frame.start_magnitude).min(opts.max_padding))
 }
 
 /// Triangle `index` in the frame's eSpace coordinates.
@@ -234,7 +233,8 @@ fn restore_skin<T: Real>(frame: &Frame<'_, T>, p: Vec3<T>, w: &Vec3<T>, opts: &R
     let reach = one.clone() + T::c(opts.max_padding);
     let mut nearest: Option<(T, Vec3<T>, &Triangle<T>)> = None;
     for c in &frame.hood.triangles {
-        if c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &c.triangle.a)).abs() >= reach) {
+        let outside_box = (0..3).any(|i| c.lo[i] > p[i].clone() + &reach || c.hi[i] < p[i].clone() - &reach);
+        if outside_box || c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &c.triangle.a)).abs() >= reach) {
             continue;
         }
         let (q, _) = closest_point_on_triangle(&p, &c.triangle);
