@@ -67,12 +67,14 @@ impl<T: Real> Ellipsoid<T> {
     }
 
     /// World space to eSpace: divides each coordinate by its radius.
+    #[inline]
     #[must_use]
     pub fn to_espace(&self, p: &Vec3<T>) -> Vec3<T> {
         Vector3::new(p.x.clone() / &self.radii.x, p.y.clone() / &self.radii.y, p.z.clone() / &self.radii.z)
     }
 
     /// eSpace to world space: multiplies each coordinate by its radius.
+    #[inline]
     #[must_use]
     pub fn from_espace(&self, p: &Vec3<T>) -> Vec3<T> {
         Vector3::new(p.x.clone() * &self.radii.x, p.y.clone() * &self.radii.y, p.z.clone() * &self.radii.z)

@@ -15,6 +15,7 @@ pub struct Plane<T: Real> {
 impl<T: Real> Plane<T> {
     /// The plane through `origin` with the given unit `normal` (not
     /// re-normalised: pass a unit vector).
+    #[inline]
     #[must_use]
     pub fn from_point_normal(origin: &Vec3<T>, normal: Vec3<T>) -> Self {
         let constant = -dot(&normal, origin);
@@ -24,6 +25,7 @@ impl<T: Real> Plane<T> {
     /// The plane of a triangle, normal `normalize((b - a) x (c - a))`
     /// (counter-clockwise front face), through vertex `a`, as Fauerby builds
     /// it. `None` when the triangle is degenerate in this precision.
+    #[inline]
     #[must_use]
     pub fn from_triangle(tri: &Triangle<T>) -> Option<Self> {
         let n = normalize(&tri.unnormalized_normal())?;
@@ -34,6 +36,7 @@ impl<T: Real> Plane<T> {
     /// side). Rounding: the constant carries an error proportional to the
     /// magnitude of the origin it was built from; prefer relative
     /// coordinates for points far from the origin.
+    #[inline]
     #[must_use]
     pub fn signed_distance(&self, p: &Vec3<T>) -> T {
         dot(&self.normal, p) + &self.constant

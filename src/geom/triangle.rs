@@ -46,6 +46,7 @@ impl<T: Real> Triangle<T> {
     }
 
     /// `(b - a) x (c - a)`: normal times twice the area.
+    #[inline]
     #[must_use]
     pub fn unnormalized_normal(&self) -> Vec3<T> {
         cross(&(&self.b - &self.a), &(&self.c - &self.a))
@@ -53,6 +54,7 @@ impl<T: Real> Triangle<T> {
 
     /// The triangle with `origin` subtracted from every vertex (so that
     /// `origin` becomes the new origin of coordinates).
+    #[inline]
     #[must_use]
     pub fn relative_to(&self, origin: &Vec3<T>) -> Self {
         Triangle { a: &self.a - origin, b: &self.b - origin, c: &self.c - origin }

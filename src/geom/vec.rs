@@ -32,6 +32,7 @@ pub fn to_f64<T: Real>(v: &Vec3<T>) -> Vector3<f64> {
 
 /// Dot product, evaluated as `(a.x*b.x + a.y*b.y) + a.z*b.z`. Its rounding
 /// error is at most `3u * sum |a_i b_i|` (`u` the unit roundoff).
+#[inline]
 #[must_use]
 pub fn dot<T: Real>(a: &Vec3<T>, b: &Vec3<T>) -> T {
     a.x.clone() * &b.x + a.y.clone() * &b.y + a.z.clone() * &b.z
@@ -39,6 +40,7 @@ pub fn dot<T: Real>(a: &Vec3<T>, b: &Vec3<T>) -> T {
 
 /// Cross product `a x b`, each component `a_i*b_j - a_j*b_i` with three
 /// roundings (error at most `2u * (|a_i b_j| + |a_j b_i|)` per component).
+#[inline]
 #[must_use]
 pub fn cross<T: Real>(a: &Vec3<T>, b: &Vec3<T>) -> Vec3<T> {
     Vector3::new(
@@ -49,18 +51,21 @@ pub fn cross<T: Real>(a: &Vec3<T>, b: &Vec3<T>) -> Vec3<T> {
 }
 
 /// Squared Euclidean length, `dot(a, a)`.
+#[inline]
 #[must_use]
 pub fn norm_squared<T: Real>(a: &Vec3<T>) -> T {
     dot(a, a)
 }
 
 /// Euclidean length, `sqrt(dot(a, a))`.
+#[inline]
 #[must_use]
 pub fn norm<T: Real>(a: &Vec3<T>) -> T {
     norm_squared(a).sqrt()
 }
 
 /// `a / |a|`, or `None` when `|a|` is zero or not finite (never NaN).
+#[inline]
 #[must_use]
 pub fn normalize<T: Real>(a: &Vec3<T>) -> Option<Vec3<T>> {
     let n = norm(a);
@@ -72,6 +77,7 @@ pub fn normalize<T: Real>(a: &Vec3<T>) -> Option<Vec3<T>> {
 }
 
 /// `true` when all three components are finite.
+#[inline]
 #[must_use]
 pub fn is_finite<T: Real>(a: &Vec3<T>) -> bool {
     a.x.is_finite() && a.y.is_finite() && a.z.is_finite()
