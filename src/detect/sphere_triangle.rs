@@ -353,6 +353,9 @@ pub fn sweep_robust<T: Real>(
     let v2 = norm_squared(vel);
     for (i, v) in p.iter().enumerate() {
         let c = norm_squared(*v) - &one;
+        if !(c > zero) {
+            continue;
+        }
         // disc = (vel.v)^2 - |vel|^2 c = |vel|^2 - |vel x v|^2 (Lagrange).
         let disc = v2.clone() - norm_squared(&cross(vel, *v));
         let Some(t) = stable_entry_root(&-dot(vel, *v), &c, &disc) else {

@@ -24,7 +24,7 @@ pub use linahan::LinahanOptions;
 pub use robust::RobustOptions;
 
 use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, check_finite};
-use crate::geom::{Ellipsoid, Vec3};
+use crate::geom::{Ellipsoid, Vec3, norm};
 use crate::world::World;
 use crate::{Error, Real};
 
@@ -268,24 +268,13 @@ pub fn move_body<T: Real>(
     Ok(Move { position, trace: frame.trace })
 }
 
-/// The world-space box that holds the body anywhere it can reach from
-/// `position` by the given displacements one after the other, grown by 5%
-/// of the radii for paddings and push-outs (the robust response gathers
+/// The world-space box that holds the body anywhere it can reach this frame:
+/// a slide may turn the displacement sideways, so the box extends the total
+/// length of all displacements in every direction from `position`, grown by
+/// 5% of the radii for paddings and push-outs (the robust response gathers
 /// again if a push-out takes it further).
 fn reach_box<T: Real>(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
-    let mut min = position.clone();
-    let mut max = position.clone();
-    let mut corners = vec![position.clone()];
-    for m in moves {
-        let more: Vec<Vec3<T>> = corners.iter().map(|c| c + *m).collect();
-        corners.extend(more);
-    }
-    for c in &corners {
-        for i in 0..3 {
-            min[i] = min[i].clone().min(c[i].clone());
-            max[i] = max[i].clone().max(c[i].clone());
-        }
-    }
-    let grow = body.radii() * T::c(REACH_MARGIN);
-    (min - &grow, max + grow)
+    let reach = moves.iter().fold(T::zero(), |r, m| r + norm(m));
+    let grow = body.radii() * T::c(REACH_MARGIN) + Vec3::repeat(reach);
+    (position - &grow, position + grow)
 }

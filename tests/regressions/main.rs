@@ -4,6 +4,7 @@
 //! answer.
 
 mod fauerby_detection;
+mod fuzz_found;
 mod lab_found;
 mod respond_back_face;
 mod respond_embedded;

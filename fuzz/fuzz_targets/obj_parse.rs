@@ -1,0 +1,68 @@
+//! Any text as an OBJ file: `TriangleMesh::from_obj_str` returns an error
+//! or a valid mesh (every triangle validates, indices in range, nothing
+//! dropped silently, adjacency and BVH usable), never panics.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use std::path::Path;
+use std::sync::Arc;
+use sweepslide::Error;
+use sweepslide::detect::{DetectOptions, Detection, sweep_world};
+use sweepslide::geom::{Ellipsoid, vec3};
+use sweepslide::world::{TriangleMesh, World, parse_obj};
+use sweepslide_fuzz::input::obj_text;
+
+fuzz_target!(|data: &[u8]| {
+    let text = obj_text(data);
+    let path = Path::new("fuzz.obj");
+    let parsed = parse_obj(&text, path);
+    match TriangleMesh::from_obj_str(&text, path) {
+        Err(Error::EmptyMesh) => {
+            let data = parsed.expect("EmptyMesh only after a successful parse");
+            assert!(
+                TriangleMesh::new_skipping_invalid(data.vertices, data.triangles).is_err(),
+                "EmptyMesh from from_obj_str but not from new_skipping_invalid"
+            );
+        }
+        Err(Error::Obj { line, .. }) => {
+            assert!(parsed.is_err() && line >= 1 && line <= text.lines().count().max(1), "bad error line {line}");
+        }
+        Err(e) => panic!("unexpected error kind {e:?}"),
+        Ok(mesh) => {
+            let data = parsed.expect("a mesh implies a successful parse");
+            assert!(!mesh.is_empty());
+            assert_eq!(mesh.len() + mesh.skipped().len(), data.triangles.len(), "a triangle was dropped silently");
+            assert_eq!(
+                TriangleMesh::new(data.vertices.clone(), data.triangles.clone()).is_ok(),
+                mesh.skipped().is_empty()
+            );
+            let nv = mesh.vertices().len();
+            for t in 0..mesh.len() as u32 {
+                assert!(mesh.triangles()[t as usize].iter().all(|&i| (i as usize) < nv));
+                mesh.triangle(t).validate(t as usize).expect("a kept triangle validates");
+                for e in 0..3 {
+                    if let Some(n) = mesh.adjacency().neighbour(t, e) {
+                        assert!((n as usize) < mesh.len());
+                    }
+                }
+                let _ = mesh.active(t);
+            }
+            let b = *mesh.bounds();
+            let world = World::<f32>::new(Arc::new(mesh));
+            let centre = b.centre();
+            let d = b.max - b.min;
+            let r = (d.norm() * 0.05).clamp(1e-3, 1e3);
+            if let Ok(body) = Ellipsoid::<f32>::sphere(r) {
+                let pos = vec3::<f32>(centre.x, b.max.y + 2.0 * r, centre.z);
+                let vel = vec3::<f32>(d.x * 0.1, -(d.y + 4.0 * r), d.z * 0.1);
+                if pos.iter().chain(vel.iter()).all(|x| x.is_finite()) {
+                    let hit = sweep_world(&world, &body, &pos, &vel, Detection::Robust, &DetectOptions::default())
+                        .expect("finite input");
+                    if let Some(h) = hit {
+                        assert!((0.0..=1.0).contains(&h.t), "t = {}", h.t);
+                    }
+                }
+            }
+        }
+    }
+});

@@ -1,0 +1,326 @@
+//! The fuzz targets' invariants (`fuzz/`, see `docs/fuzzing.md`) as
+//! proptest properties, so that plain `cargo test` checks them too.
+//!
+//! The invariants and their exact MPFR oracles are not copied: this file
+//! includes `fuzz/src/oracle.rs`, the module the fuzz targets assert with.
+//! Only the input generators differ (proptest strategies here, `arbitrary`
+//! decoders there).
+//!
+//! * `robust_sweep_*` (target `sweep_triangle`): the robust sweep of one
+//!   triangle gives `t` in `[0, 1]`, touches at `t` (the exact distance is
+//!   1 within the bound), enters nothing before, and agrees with
+//!   `Mpfr<256>` on the same rounded input.
+//! * `robust_moves_*` (target `move_robust`): the robust response never
+//!   produces a NaN, never exceeds its iteration bound and never ends a
+//!   frame penetrating (exact check), from a start outside the geometry.
+//! * `obj_parser_*` (target `obj_parse`): OBJ text, random or built from
+//!   OBJ-like lines, gives an error or a valid mesh, never a panic.
+//!
+//! Ranges: the sweeps keep the relative magnitude `s` (start to triangle,
+//! velocity, in radii) below about 30; the soups are lone triangles and
+//! folds (no slots, no coincident layers) and the displacements stay below
+//! 0.02 radii per pass. The fuzz targets cover the whole documented range;
+//! the regimes left out here are where the campaign found the robust code
+//! failing (docs/fuzzing.md, "Campaign results": F1, vertex and edge entry
+//! times losing accuracy like `u s^2`; F2, slides leaving the frame's
+//! candidate box; F3, slots narrower than the padding; F4, coincident
+//! layers), so that `cargo test` stays a check of what is meant to hold
+//! rather than a standing failure. Widen them as those are fixed.
+#![cfg(all(feature = "mpfr", feature = "lab"))]
+
+#[allow(dead_code)]
+#[path = "../fuzz/src/oracle.rs"]
+mod oracle;
+
+use oracle::{FrameInput, MoveCase, Skip, check_robust_moves, check_sweep};
+use proptest::prelude::*;
+use std::f64::consts::PI;
+use std::path::Path;
+use sweepslide::Real;
+use sweepslide::world::{TriangleMesh, parse_obj};
+
+type V = [f64; 3];
+
+fn add(a: V, b: V) -> V {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn sub(a: V, b: V) -> V {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn mul(a: V, s: f64) -> V {
+    a.map(|x| x * s)
+}
+
+fn dot(a: V, b: V) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: V, b: V) -> V {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn unit(a: V) -> V {
+    let l = dot(a, a).sqrt();
+    if l > 1e-12 { mul(a, 1.0 / l) } else { [0.0, 0.0, 1.0] }
+}
+
+/// Two unit vectors completing the unit `n` to an orthonormal frame.
+fn frame(n: V) -> (V, V) {
+    let helper = if n[0].abs() < 0.6 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let u = unit(cross(n, helper));
+    (u, cross(n, u))
+}
+
+/// A unit vector from two angles in `[0, 1)`.
+fn direction(a: f64, b: f64) -> V {
+    let (theta, phi) = ((1.0 - 2.0 * a).acos(), 2.0 * PI * b);
+    [theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()]
+}
+
+// ------------------------------------------------------------ strategies --
+
+/// A triangle of size about `size` around the origin in the plane of unit
+/// normal `n`: well shaped (angles above about 15 degrees) or a sliver of
+/// height `2 * 10^-k` over a base of 2 (shape factor up to about 1000, the
+/// sweep checks' range).
+fn triangle() -> impl Strategy<Value = [V; 3]> {
+    (
+        (0.0..1.0f64, 0.0..1.0f64, 0.0..6.3f64),
+        prop::array::uniform3(0.3..2.5f64),
+        prop::array::uniform3(-0.5..0.5f64),
+        prop_oneof![3 => Just(None), 1 => (0.0..2.9f64, -0.5..1.5f64).prop_map(Some)],
+        -3.0..1.0f64,
+    )
+        .prop_map(|((a, b, spin), radii, jitter, sliver, log_size)| {
+            let n = direction(a, b);
+            let (u0, w0) = frame(n);
+            let (s, c) = spin.sin_cos();
+            let (u, w) = (add(mul(u0, c), mul(w0, s)), add(mul(w0, c), mul(u0, -s)));
+            let size = 10f64.powf(log_size);
+            let pts: [[f64; 2]; 3] = match sliver {
+                None => std::array::from_fn(|i| {
+                    let ang = i as f64 * 2.0 * PI / 3.0 + jitter[i];
+                    [radii[i] * ang.cos(), radii[i] * ang.sin()]
+                }),
+                Some((k, x)) => [[-1.0, 0.0], [1.0, 0.0], [2.0 * x - 1.0, 2.0 * 10f64.powf(-k)]],
+            };
+            pts.map(|[x, y]| add(mul(u, x * size), mul(w, y * size)))
+        })
+}
+
+/// A signed small distance beyond touching: exact, a few `f32` or `f64`
+/// ulps, a power of ten, or a fraction.
+fn gap() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        Just(0.0),
+        (-64i32..64).prop_map(|k| f64::from(k) * 2f64.powi(-24)),
+        (-64i32..64).prop_map(|k| f64::from(k) * 2f64.powi(-53)),
+        (1i32..15, any::<bool>()).prop_map(|(e, neg)| if neg { -(10f64.powi(-e)) } else { 10f64.powi(-e) }),
+        -0.5..0.5f64,
+    ]
+}
+
+/// `(base, vel, tri)`: the unit sphere at `1 + gap` from a point of the
+/// triangle (face, edge or vertex) at time `tau`, moving at an angle from
+/// head-on (exactly grazing included), the whole case moved by `offset`.
+fn sweep_case(offsets: Vec<f64>) -> impl Strategy<Value = (V, V, [V; 3])> {
+    (
+        triangle(),
+        (0usize..3, 0.0..1.0f64, 0.0..1.0f64, prop::sample::select(vec![0u8, 1, 2])),
+        (0.0..1.0f64, 0.0..1.0f64),
+        gap(),
+        prop_oneof![Just(0.0), Just(PI / 2.0), 0.0..PI / 2.0, (1i32..12).prop_map(|k| PI / 2.0 - 10f64.powi(-k))],
+        (0.0..6.3f64, -0.2..1.2f64, -3.0..1.0f64),
+        (prop::sample::select(offsets), 0.0..1.0f64, 0.0..1.0f64),
+    )
+        .prop_map(|(tri, (edge, s, t, kind), (ca, cb), gap, phi, (heading, tau, log_speed), (off, oa, ob))| {
+            // The aimed point: on the face, an edge or a vertex.
+            let (a, b) = (tri[edge], tri[(edge + 1) % 3]);
+            let point = match kind {
+                0 => {
+                    let (s, t) = if s + t > 1.0 { (1.0 - s, 1.0 - t) } else { (s, t) };
+                    add(tri[0], add(mul(sub(tri[1], tri[0]), s), mul(sub(tri[2], tri[0]), t)))
+                }
+                1 => add(a, mul(sub(b, a), s)),
+                _ => a,
+            };
+            let c = direction(ca, cb);
+            let centre = add(point, mul(c, 1.0 + gap));
+            let (u, w) = frame(c);
+            let side = add(mul(u, heading.cos()), mul(w, heading.sin()));
+            let dir = add(mul(c, -phi.cos()), mul(side, phi.sin()));
+            let vel = mul(dir, 10f64.powf(log_speed));
+            let o = mul(direction(oa, ob), off);
+            (add(sub(centre, mul(vel, tau)), o), vel, tri.map(|p| add(p, o)))
+        })
+}
+
+fn assert_sweep<T: Real>(base: V, vel: V, tri: [V; 3]) -> Result<(), TestCaseError> {
+    match check_sweep::<T>(base, vel, tri) {
+        Ok(_) => Ok(()),
+        Err(e) => Err(TestCaseError::fail(e)),
+    }
+}
+
+/// A soup piece in units of the body's largest radius `r`: a lone
+/// triangle, or a fold (two quads hinged on a common edge, dihedral angle
+/// from razor-thin to nearly flat).
+fn piece() -> impl Strategy<Value = Vec<[V; 3]>> {
+    prop_oneof![
+        (triangle(), prop::array::uniform3(-3.0..3.0f64)).prop_map(|(t, at)| vec![t.map(|p| add(p, at))]),
+        (
+            (0.0..1.0f64, 0.0..1.0f64, 0.0..6.3f64),
+            prop_oneof![
+                0.05..6.23f64,
+                (1i32..12, any::<bool>()).prop_map(|(k, s)| PI + if s { 1.0 } else { -1.0 } * 10f64.powi(-k))
+            ],
+            1.0..8.0f64,
+            prop::array::uniform3(-3.0..3.0f64),
+            any::<bool>(),
+        )
+            .prop_map(|((a, b, spin), angle, size, at, diagonal)| {
+                let e = direction(a, b);
+                let (u0, w0) = frame(e);
+                let u = add(mul(u0, spin.cos()), mul(w0, spin.sin()));
+                let w = add(mul(u, angle.cos()), mul(cross(e, u), angle.sin()));
+                let p = sub(at, mul(e, size));
+                let e2 = mul(e, 2.0 * size);
+                let quad = |p: V, a: V, b: V, d: bool| {
+                    let (q, r, s) = (add(p, a), add(add(p, a), b), add(p, b));
+                    if d { vec![[p, q, r], [p, r, s]] } else { vec![[p, q, s], [q, r, s]] }
+                };
+                let mut t = quad(p, e2, mul(u, size), diagonal);
+                t.extend(quad(p, e2, mul(w, size), !diagonal));
+                t
+            }),
+    ]
+}
+
+/// A move scenario: radii, a soup of 1 to 4 pieces, a start, 1 to 6
+/// frames with an optional gravity, moved by `offset`.
+fn move_case(offsets: Vec<f64>) -> impl Strategy<Value = MoveCase> {
+    (
+        (-2.0..2.0f64, prop::array::uniform2(-2.0..2.0f64), any::<bool>()),
+        prop::collection::vec(piece(), 1..4),
+        prop::array::uniform3(-4.0..4.0f64),
+        prop::collection::vec((0.0..1.0f64, 0.0..1.0f64, -3.0..-1.7f64), 1..6),
+        prop_oneof![Just(None), (-3.0..-1.7f64).prop_map(Some)],
+        (prop::sample::select(offsets), 0.0..1.0f64, 0.0..1.0f64),
+    )
+        .prop_map(|((log_r, ratios, ellipsoid), pieces, start, pushes, gravity, (off, oa, ob))| {
+            let r = 10f64.powf(log_r);
+            let radii = if ellipsoid { [r, r * 2f64.powf(ratios[0]), r * 2f64.powf(ratios[1])] } else { [r; 3] };
+            let big = radii.iter().copied().fold(0.0, f64::max);
+            let o = mul(direction(oa, ob), off);
+            let place = |p: V| add(mul(p, big), o);
+            let triangles = pieces.into_iter().flatten().map(|t| t.map(place)).collect();
+            let gravity = gravity.map(|g: f64| [0.0, -(10f64.powf(g)) * big, 0.0]);
+            let frames = pushes
+                .into_iter()
+                .map(|(a, b, log_speed)| FrameInput {
+                    velocity: mul(direction(a, b), 10f64.powf(log_speed) * big),
+                    gravity,
+                })
+                .collect();
+            MoveCase { triangles, radii, start: place(start), frames }
+        })
+}
+
+fn assert_moves<T: Real>(case: &MoveCase) -> Result<(), TestCaseError> {
+    match check_robust_moves::<T>(case) {
+        Ok(Ok(()) | Err(Skip::StartsInside | Skip::PaddingCap)) => Ok(()),
+        Ok(Err(skip)) => Err(TestCaseError::fail(format!("generator left the range: {skip:?} for {case:?}"))),
+        Err(e) => Err(TestCaseError::fail(e)),
+    }
+}
+
+/// One OBJ-like line: vertices (plain, weighted, short, odd numbers),
+/// faces (every index form, negative and out-of-range indices), other
+/// statements, comments, garbage.
+fn obj_line() -> impl Strategy<Value = String> {
+    let num = prop_oneof![
+        (-20i32..20).prop_map(|k| k.to_string()),
+        (-1e6..1e6f64).prop_map(|x| x.to_string()),
+        Just("1e309".to_string()),
+        Just("nan".to_string()),
+        Just("-0".to_string()),
+        "[0-9.eE+-]{1,8}",
+    ];
+    let corner = (-12i32..12, 0u8..5).prop_map(|(i, form)| match form {
+        0 => format!("{i}"),
+        1 => format!("{i}/1"),
+        2 => format!("{i}//2"),
+        3 => format!("{i}/1/2"),
+        _ => format!("{i}/"),
+    });
+    prop_oneof![
+        6 => prop::collection::vec(num, 2..5).prop_map(|c| format!("v {}", c.join(" "))),
+        6 => prop::collection::vec(corner, 0..6).prop_map(|c| format!("f {}", c.join(" "))),
+        1 => prop::sample::select(vec!["vt 0 1", "vn 0 1 0", "o a", "g b", "s 1", "usemtl m", "l 1 2", "p 1", "# c", ""])
+            .prop_map(str::to_string),
+        1 => "\\PC{0,20}",
+    ]
+}
+
+fn check_obj(text: &str) -> Result<(), TestCaseError> {
+    let path = Path::new("prop.obj");
+    let parsed = parse_obj(text, path);
+    match TriangleMesh::from_obj_str(text, path) {
+        Err(_) => Ok(()),
+        Ok(mesh) => {
+            let data = parsed.map_err(|e| TestCaseError::fail(format!("mesh from text parse_obj rejects: {e}")))?;
+            prop_assert!(!mesh.is_empty());
+            prop_assert_eq!(mesh.len() + mesh.skipped().len(), data.triangles.len(), "a triangle dropped silently");
+            for t in 0..mesh.len() as u32 {
+                prop_assert!(mesh.triangle(t).validate(t as usize).is_ok(), "kept triangle {} is invalid", t);
+            }
+            Ok(())
+        }
+    }
+}
+
+const NEAR: f64 = 0.0;
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1500, ..ProptestConfig::default() })]
+
+    #[test]
+    fn robust_sweep_f32((base, vel, tri) in sweep_case(vec![NEAR, 30.0, 1.0e3, 1.0e5])) {
+        assert_sweep::<f32>(base, vel, tri)?;
+    }
+
+    #[test]
+    fn robust_sweep_f64((base, vel, tri) in sweep_case(vec![NEAR, 30.0, 1.0e3, 1.0e5])) {
+        assert_sweep::<f64>(base, vel, tri)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn robust_moves_f32(case in move_case(vec![NEAR, 1.0e3, 3.0e4])) {
+        assert_moves::<f32>(&case)?;
+    }
+
+    #[test]
+    fn robust_moves_f64(case in move_case(vec![NEAR, 1.0e5])) {
+        assert_moves::<f64>(&case)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn obj_parser_random_text(text in "\\PC{0,200}") {
+        check_obj(&text)?;
+    }
+
+    #[test]
+    fn obj_parser_obj_like_lines(lines in prop::collection::vec(obj_line(), 0..24), crlf in any::<bool>()) {
+        check_obj(&lines.join(if crlf { "\r\n" } else { "\n" }))?;
+    }
+}
