@@ -86,7 +86,7 @@ fn snag_ratio_is_progress_over_ideal() {
 fn brute_distance_sq(p: [f64; 3], t: [[f64; 3]; 3]) -> f64 {
     let mut best = f64::INFINITY;
     let (mut u0, mut v0, mut h) = (0.0f64, 0.0f64, 1.0f64);
-    for _ in 0..30 {
+    for _ in 0..60 {
         let (mut bu, mut bv) = (u0, v0);
         for i in -8..=8 {
             for j in -8..=8 {
@@ -112,7 +112,7 @@ fn brute_distance_sq(p: [f64; 3], t: [[f64; 3]; 3]) -> f64 {
                 }
             }
         }
-        (u0, v0, h) = (bu, bv, h / 4.0);
+        (u0, v0, h) = (bu, bv, h / 2.0);
     }
     best
 }
@@ -122,7 +122,7 @@ fn exact(p: [f64; 3]) -> [Float; 3] {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(64))]
     /// The exact distance agrees with brute force, including points placed
     /// near edges and vertices (the offsets below put the foot point within
     /// 1e-9 of an edge or vertex half the time).
@@ -136,7 +136,13 @@ proptest! {
         let a = nalgebra::Vector3::from(t[0]);
         let b = nalgebra::Vector3::from(t[1]);
         let c = nalgebra::Vector3::from(t[2]);
-        prop_assume!((b - a).cross(&(c - a)).norm() > 1e-3);
+        // Reasonably shaped triangles (shape factor max|edge|^2 / |cross| at
+        // most 10, smallest angle about 6 degrees): on slivers the grid
+        // search of the reference, in barycentric coordinates, is too
+        // anisotropic to converge.
+        let area2 = (b - a).cross(&(c - a)).norm();
+        let longest = [(b - a).norm_squared(), (c - b).norm_squared(), (a - c).norm_squared()].into_iter().fold(0.0, f64::max);
+        prop_assume!(area2 > 1e-3 && longest / area2 <= 10.0);
         let n = (b - a).cross(&(c - a)).normalize();
         let s = w[0] + w[1] + w[2];
         let mut foot = (a * w[0] + b * w[1] + c * w[2]) / s;
