@@ -7,7 +7,7 @@
 //! NaN his arithmetic can produce is kept: normalising a zero vector divides
 //! by zero.
 
-use super::{Frame, StopReason};
+use super::{Frame, StopReason, unguarded_normalize as normalized};
 use crate::Real;
 use crate::detect::hit_distance;
 use crate::geom::{Plane, Vec3, norm};
@@ -41,11 +41,6 @@ impl FauerbyOptions {
 /// `v` scaled to length `len`, as his `SetLength` does it (`v * len/|v|`).
 fn set_length<T: Real>(v: &Vec3<T>, len: &T) -> Vec3<T> {
     v * (len.clone() / norm(v))
-}
-
-/// His `normalize`: divides by the length, unguarded.
-fn normalized<T: Real>(v: &Vec3<T>) -> Vec3<T> {
-    v / norm(v)
 }
 
 /// One pass of `collideWithWorld` from eSpace position `pos` with eSpace

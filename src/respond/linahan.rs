@@ -8,7 +8,7 @@
 //! point (`pos + vel t`). Unguarded normalisations are kept: parallel planes
 //! make the crease NaN.
 
-use super::{Frame, StopReason};
+use super::{Frame, StopReason, unguarded_normalize as normalized};
 use crate::Real;
 use crate::geom::{Plane, Vec3, cross, dot, norm};
 
@@ -26,10 +26,6 @@ impl Default for LinahanOptions {
     fn default() -> Self {
         LinahanOptions { very_close_distance: 5e-5 }
     }
-}
-
-fn normalized<T: Real>(v: &Vec3<T>) -> Vec3<T> {
-    v / norm(v)
 }
 
 /// One pass of `sphere_sweep` from eSpace `pos` by eSpace `vel`.

@@ -162,6 +162,12 @@ pub struct Move<T: Real> {
     pub trace: Trace<T>,
 }
 
+/// `v / |v|` without a guard, as Fauerby's and Linahan's code normalise: a
+/// zero vector gives NaN, which the faithful responses must keep.
+pub(crate) fn unguarded_normalize<T: Real>(v: &Vec3<T>) -> Vec3<T> {
+    v / norm(v)
+}
+
 /// How far beyond the radii a frame gathers candidates, in radii.
 pub(crate) const REACH_MARGIN: f64 = 1.05;
 
