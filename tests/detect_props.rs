@@ -62,6 +62,7 @@ use sweepslide::detect::{
     Candidate, DetectOptions, Detection, Hit, Neighbourhood, earliest_hit, sweep_world, swept_box,
 };
 use sweepslide::geom::{Ellipsoid, Triangle, Vec3, vec3};
+use sweepslide::lab::metrics::triangle_distance_sq;
 use sweepslide::world::{TriangleMesh, World};
 use sweepslide::{Mpfr, Real};
 
@@ -87,10 +88,6 @@ fn xv<T: Real>(v: &Vec3<T>) -> X {
     [xr(&v[0]), xr(&v[1]), xr(&v[2])]
 }
 
-fn sub(a: &X, b: &X) -> X {
-    [0, 1, 2].map(|i| Float::with_val(PREC, &a[i] - &b[i]))
-}
-
 fn add(a: &X, b: &X) -> X {
     [0, 1, 2].map(|i| Float::with_val(PREC, &a[i] + &b[i]))
 }
@@ -99,46 +96,11 @@ fn scale(a: &X, s: &Float) -> X {
     [0, 1, 2].map(|i| Float::with_val(PREC, &a[i] * s))
 }
 
-fn dot(a: &X, b: &X) -> Float {
-    let mut s = Float::with_val(PREC, &a[0] * &b[0]);
-    s += Float::with_val(PREC, &a[1] * &b[1]);
-    s += Float::with_val(PREC, &a[2] * &b[2]);
-    s
-}
-
-fn cross(a: &X, b: &X) -> X {
-    [
-        Float::with_val(PREC, &a[1] * &b[2]) - Float::with_val(PREC, &a[2] * &b[1]),
-        Float::with_val(PREC, &a[2] * &b[0]) - Float::with_val(PREC, &a[0] * &b[2]),
-        Float::with_val(PREC, &a[0] * &b[1]) - Float::with_val(PREC, &a[1] * &b[0]),
-    ]
-}
-
-fn norm(a: &X) -> Float {
-    dot(a, a).sqrt()
-}
-
-/// Distance from `p` to the segment `[a, b]`.
-fn dist_segment(p: &X, a: &X, b: &X) -> Float {
-    let e = sub(b, a);
-    let s = dot(&sub(p, a), &e) / dot(&e, &e);
-    let s = s.clamp(&xs(0.0), &xs(1.0));
-    norm(&sub(p, &add(a, &scale(&e, &s))))
-}
-
-/// Distance from `p` to the triangle `t`: to its plane when the projection
-/// of `p` lies inside (all three edge orientations agree with the normal),
-/// else to the nearest edge segment.
+/// The exact distance from `p` to the triangle `t`: the lab's metric
+/// (`lab::metrics::triangle_distance_sq`, itself checked against brute force
+/// in `tests/lab.rs`), computed at the same 512 bits as this file.
 fn dist_triangle(p: &X, t: &[X; 3]) -> Float {
-    let n = cross(&sub(&t[1], &t[0]), &sub(&t[2], &t[0]));
-    let inside = (0..3).all(|i| {
-        let (a, b) = (&t[i], &t[(i + 1) % 3]);
-        dot(&cross(&sub(b, a), &sub(p, a)), &n) >= 0
-    });
-    if inside {
-        return (dot(&sub(p, &t[0]), &n) / norm(&n)).abs();
-    }
-    (0..3).map(|i| dist_segment(p, &t[i], &t[(i + 1) % 3])).min_by(|a, b| a.total_cmp(b)).expect("three edges")
+    triangle_distance_sq(p, &t[0], &t[1], &t[2]).sqrt()
 }
 
 /// A backend input, exactly: the sphere path and triangles.

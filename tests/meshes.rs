@@ -17,6 +17,7 @@ use std::sync::Arc;
 use sweepslide::Real;
 use sweepslide::detect::{DetectOptions, Detection, sweep_world};
 use sweepslide::geom::{Ellipsoid, Vec3, vec3};
+use sweepslide::lab::metrics::triangle_distance_sq;
 use sweepslide::world::{TriangleMesh, World};
 
 /// Bound on `|D / r - 1|` (eSpace distance error) in units of
@@ -85,41 +86,11 @@ fn xv<T: Real>(v: &Vec3<T>) -> X {
     [0, 1, 2].map(|i| Float::with_val(PREC, v[i].to_rug()))
 }
 
-fn sub(a: &X, b: &X) -> X {
-    [0, 1, 2].map(|i| Float::with_val(PREC, &a[i] - &b[i]))
-}
-
-fn dot(a: &X, b: &X) -> Float {
-    let mut s = Float::with_val(PREC, &a[0] * &b[0]);
-    s += Float::with_val(PREC, &a[1] * &b[1]);
-    s += Float::with_val(PREC, &a[2] * &b[2]);
-    s
-}
-
-fn cross(a: &X, b: &X) -> X {
-    [
-        Float::with_val(PREC, &a[1] * &b[2]) - Float::with_val(PREC, &a[2] * &b[1]),
-        Float::with_val(PREC, &a[2] * &b[0]) - Float::with_val(PREC, &a[0] * &b[2]),
-        Float::with_val(PREC, &a[0] * &b[1]) - Float::with_val(PREC, &a[1] * &b[0]),
-    ]
-}
-
-fn dist_segment(p: &X, a: &X, b: &X) -> Float {
-    let e = sub(b, a);
-    let s = (dot(&sub(p, a), &e) / dot(&e, &e)).clamp(&0, &1);
-    let q: X = [0, 1, 2].map(|i| Float::with_val(PREC, &a[i] + Float::with_val(PREC, &e[i] * &s)));
-    let d = sub(p, &q);
-    dot(&d, &d).sqrt()
-}
-
-/// Plane distance when the projection lies inside, else the nearest edge.
+/// The exact distance from `p` to the triangle `t`: the lab's metric
+/// (`lab::metrics::triangle_distance_sq`, itself checked against brute force
+/// in `tests/lab.rs`), computed at the same 512 bits as this file.
 fn dist_triangle(p: &X, t: &[X; 3]) -> Float {
-    let n = cross(&sub(&t[1], &t[0]), &sub(&t[2], &t[0]));
-    let inside = (0..3).all(|i| dot(&cross(&sub(&t[(i + 1) % 3], &t[i]), &sub(p, &t[i])), &n) >= 0);
-    if inside {
-        return (dot(&sub(p, &t[0]), &n) / dot(&n, &n).sqrt()).abs();
-    }
-    (0..3).map(|i| dist_segment(p, &t[i], &t[(i + 1) % 3])).min_by(|a, b| a.total_cmp(b)).expect("three edges")
+    triangle_distance_sq(p, &t[0], &t[1], &t[2]).sqrt()
 }
 
 /// The exact centre `base + t vel`.
