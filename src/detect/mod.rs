@@ -12,6 +12,8 @@ pub mod sphere_triangle;
 
 pub use sphere_triangle::{fauerby_point_in_triangle, sweep_fauerby, sweep_robust};
 
+use sphere_triangle::{SweptBox, sweep_robust_within};
+
 use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, is_finite, norm, normalize};
 use crate::world::{ActiveFeatures, World};
 use crate::{Error, Real};
@@ -139,6 +141,21 @@ impl<T: Real> Candidate<T> {
         Candidate { index, triangle, active, normal, lo, hi }
     }
 
+    /// The squared distance from `p` to this candidate's box (zero inside):
+    /// a lower bound of the squared distance to the triangle, cheap enough to
+    /// reject a candidate before any per-triangle work. Rounded: each axis's
+    /// excess is one subtraction (error `u` times the larger coordinate),
+    /// so callers compare it against a bound carrying that much slack.
+    #[inline]
+    #[must_use]
+    pub fn box_distance_sq(&self, p: &Vec3<T>) -> T {
+        let zero = T::zero();
+        (0..3).fold(zero.clone(), |sum, i| {
+            let excess = (self.lo[i].clone() - &p[i]).max(p[i].clone() - &self.hi[i]).max(zero.clone());
+            sum + excess.clone() * excess
+        })
+    }
+
     /// A lone triangle (every edge and vertex active).
     #[must_use]
     pub fn lone(index: u32, triangle: Triangle<T>) -> Self {
@@ -161,12 +178,23 @@ impl<T: Real> Neighbourhood<T> {
         world.candidates(min, max, scratch);
         scratch.sort_unstable();
         let to_e = |v: &Vec3<T>| body.to_espace(&(v - &origin));
+        // The BVH's leaves hold several triangles and its bounds are rounded
+        // outward; the exact test on each triangle's own box (comparisons
+        // are exact) keeps only those that meet the box.
+        let meets = |w: &Triangle<T>| {
+            (0..3).all(|i| {
+                let coords = [&w.a[i], &w.b[i], &w.c[i]];
+                coords.iter().any(|x| **x >= min[i]) && coords.iter().any(|x| **x <= max[i])
+            })
+        };
         let triangles = scratch
             .iter()
-            .map(|&t| {
+            .filter_map(|&t| {
                 let w = world.triangle(t);
-                let triangle = Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c));
-                Candidate::new(t, triangle, world.mesh().active(t))
+                meets(&w).then(|| {
+                    let triangle = Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c));
+                    Candidate::new(t, triangle, world.mesh().active(t))
+                })
             })
             .collect();
         Neighbourhood { origin, triangles }
@@ -200,9 +228,15 @@ pub fn earliest_hit<'a, T: Real + 'a>(
     opts: &DetectOptions,
 ) -> Option<Hit<T>> {
     let mut best: Option<Hit<T>> = None;
+    let swept = SweptBox::new(base, vel);
     for c in triangles {
         let limit = best.as_ref().map(|b| &b.t);
-        if let Some(h) = detection.sweep(c, base, vel, opts, limit) {
+        let hit = match detection {
+            Detection::Fauerby => sweep_fauerby(&c.triangle, base, vel, c.index),
+            Detection::Robust if swept.misses(c) => None,
+            Detection::Robust => sweep_robust_within(c, base, vel, opts, limit),
+        };
+        if let Some(h) = hit {
             let better = match &best {
                 None => true,
                 Some(b) => h.t < b.t || (h.t == b.t && h.triangle < b.triangle),

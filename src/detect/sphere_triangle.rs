@@ -189,22 +189,71 @@ pub fn sweep_robust<T: Real>(
     opts: &DetectOptions,
     limit: Option<&T>,
 ) -> Option<Hit<T>> {
+    let reach = SweptBox::new(base, vel);
+    if reach.misses(c) {
+        return None;
+    }
+    sweep_robust_within(c, base, vel, opts, limit)
+}
+
+/// The region the unit sphere swept from `base` by `vel` can touch, for the
+/// first, cheapest rejection of a candidate: the box around the swept sphere
+/// and the ball around the whole sweep (centre `base + vel / 2`, radius
+/// `|vel| / 2 + 1`), both grown by [`reach`] plus `8 u` times the largest
+/// coordinate involved (the rounding of the box corners and of the
+/// candidate-box distance). Computed once per sweep: a candidate whose box
+/// misses either is out.
+pub(crate) struct SweptBox<T: Real> {
+    lo: Vec3<T>,
+    hi: Vec3<T>,
+    mid: Vec3<T>,
+    ball_sq: T,
+}
+
+/// The radius plus the margin every quick rejection of the robust sweep
+/// keeps (far larger than the rounding of the estimates it guards).
+fn reach<T: Real>() -> T {
+    T::c(1.0 + 1e-3)
+}
+
+impl<T: Real> SweptBox<T> {
+    pub(crate) fn new(base: &Vec3<T>, vel: &Vec3<T>) -> Self {
+        let end = base + vel;
+        let magnitude = base.iter().chain(end.iter()).fold(T::zero(), |m, x| m.max(x.abs()));
+        let reach = reach::<T>() + T::c(8.0 * T::unit_roundoff()) * magnitude;
+        let lo = Vec3::from_fn(|i, _| base[i].clone().min(end[i].clone()) - &reach);
+        let hi = Vec3::from_fn(|i, _| base[i].clone().max(end[i].clone()) + &reach);
+        let mid = base + vel * T::c(0.5);
+        let ball = norm(vel) * T::c(0.5) + reach;
+        SweptBox { lo, hi, mid, ball_sq: ball.clone() * ball }
+    }
+
+    /// Whether the candidate's box lies wholly outside the swept box or the
+    /// ball around the sweep.
+    #[inline]
+    pub(crate) fn misses(&self, c: &Candidate<T>) -> bool {
+        if (0..3).any(|i| c.lo[i] > self.hi[i] || c.hi[i] < self.lo[i]) {
+            return true;
+        }
+        c.box_distance_sq(&self.mid) > self.ball_sq
+    }
+}
+
+/// [`sweep_robust`] for a candidate whose box meets the [`SweptBox`].
+pub(crate) fn sweep_robust_within<T: Real>(
+    c: &Candidate<T>,
+    base: &Vec3<T>,
+    vel: &Vec3<T>,
+    opts: &DetectOptions,
+    limit: Option<&T>,
+) -> Option<Hit<T>> {
     let zero = T::zero();
     let one = T::one();
     let (index, active) = (c.index, c.active);
     // A hit must come before `limit` (an earlier triangle's hit) or, with
     // none yet, within the frame.
     let wins = |t: &T| limit.map_or(*t <= one, |l| t < l);
-    // Quick rejection: the box around the swept sphere (grown by a
-    // rounding margin) misses the triangle's box.
-    let reach = T::c(1.0 + 1e-3);
-    for i in 0..3 {
-        let end = base[i].clone() + &vel[i];
-        let (lo, hi) = if vel[i] < zero { (end, base[i].clone()) } else { (base[i].clone(), end) };
-        if c.lo[i] > hi + &reach || c.hi[i] < lo - &reach {
-            return None;
-        }
-    }
+    let reach = reach::<T>();
     // Quick rejection from the precomputed normal and vertex a alone: the
     // centre stays farther than `reach` from the plane on one side for the
     // whole sweep (the `1e-3` margin dwarfs this estimate's rounding).
@@ -244,48 +293,60 @@ pub fn sweep_robust<T: Real>(
         }
     }
     let far = p.iter().flat_map(|v| v.iter()).fold(one.clone(), |m, x| m.max(x.abs()));
-    let may_touch = plane_dist <= one.clone() + T::c(opts.touch_ulps * T::unit_roundoff()) * far || normal.is_none();
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
-    // Touching or overlapping at the start: distance and separating
-    // direction computed per feature, from the nearest point that defines
-    // it, so both carry errors of order u * |that point| only.
+    // The closest point now. The centre moves at most `|vel|`, so a
+    // triangle farther than `1 + |vel|` cannot be touched (the margin covers
+    // the closest point's rounding, of order `u * far`): this rejects most
+    // near misses before the edge and vertex quadratics.
     let origin = Vec3::zeros();
-    let (closest, feature) =
-        if may_touch { closest_point_on_triangle(&origin, &rel) } else { (origin.clone(), Feature::Face) };
-    let (dist, sep, local) = match (feature, &normal) {
-        _ if !may_touch => (plane_dist.clone(), face_normal.clone(), p[nearest]),
-        (Feature::Face, Some(n)) => (plane_dist.clone(), n.clone(), p[nearest]),
-        (Feature::Edge(i), _) => {
-            let (a, b) = (p[i as usize], p[(i as usize + 1) % 3]);
-            let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, b - a) } else { (b, a - b) };
-            let perp = -from - &e * (dot(&-from, &e) / norm_squared(&e));
-            let d = norm(&perp);
-            let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
-            (d, sep, from)
-        }
-        _ => {
-            let d = norm(&closest);
-            let sep = normalize(&-closest.clone()).unwrap_or_else(|| face_normal.clone());
-            (d, sep, p[nearest])
-        }
-    };
-    let sep = if is_active(feature, active) { sep } else { face_normal.clone() };
-    let scale = local.iter().fold(one.clone(), |m, x| m.max(x.abs()));
-    let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * &scale;
-    if dist <= one.clone() + &tol {
-        if dot(&sep, vel) < zero && wins(&zero) {
-            let overlapping = dist < one - &tol;
-            return Some(Hit {
-                t: zero,
-                point: closest + base,
-                normal: sep,
-                feature,
-                triangle: index,
-                started_overlapping: overlapping,
-            });
-        }
+    let (closest, feature) = closest_point_on_triangle(&origin, &rel);
+    let slack = T::c(64.0 * T::unit_roundoff()) * &far;
+    let gap_bound = (one.clone() + norm(vel)) * &reach + &slack;
+    let closest_sq = norm_squared(&closest);
+    if closest_sq > gap_bound.clone() * gap_bound {
         return None;
+    }
+
+    // Touching or overlapping at the start (decided only near distance 1):
+    // distance and separating direction computed per feature, from the
+    // nearest point that defines it, so both carry errors of order
+    // u * |that point| only.
+    let near = reach.clone() + &slack;
+    if closest_sq <= near.clone() * near {
+        let (dist, sep, local) = match (feature, &normal) {
+            (Feature::Face, Some(n)) => (plane_dist.clone(), n.clone(), p[nearest]),
+            (Feature::Edge(i), _) => {
+                let (a, b) = (p[i as usize], p[(i as usize + 1) % 3]);
+                let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, b - a) } else { (b, a - b) };
+                let perp = -from - &e * (dot(&-from, &e) / norm_squared(&e));
+                let d = norm(&perp);
+                let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
+                (d, sep, from)
+            }
+            _ => {
+                let d = norm(&closest);
+                let sep = normalize(&-closest.clone()).unwrap_or_else(|| face_normal.clone());
+                (d, sep, p[nearest])
+            }
+        };
+        let sep = if is_active(feature, active) { sep } else { face_normal.clone() };
+        let scale = local.iter().fold(one.clone(), |m, x| m.max(x.abs()));
+        let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * &scale;
+        if dist <= one.clone() + &tol {
+            if dot(&sep, vel) < zero && wins(&zero) {
+                let overlapping = dist < one - &tol;
+                return Some(Hit {
+                    t: zero,
+                    point: closest + base,
+                    normal: sep,
+                    feature,
+                    triangle: index,
+                    started_overlapping: overlapping,
+                });
+            }
+            return None;
+        }
     }
 
     // Face interior.

@@ -233,8 +233,9 @@ fn restore_skin<T: Real>(frame: &Frame<'_, T>, p: Vec3<T>, w: &Vec3<T>, opts: &R
     let reach = one.clone() + T::c(opts.max_padding);
     let mut nearest: Option<(T, Vec3<T>, &Triangle<T>)> = None;
     for c in &frame.hood.triangles {
-        let outside_box = (0..3).any(|i| c.lo[i] > p[i].clone() + &reach || c.hi[i] < p[i].clone() - &reach);
-        if outside_box || c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &c.triangle.a)).abs() >= reach) {
+        if c.box_distance_sq(&p) >= reach.clone() * &reach
+            || c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &c.triangle.a)).abs() >= reach)
+        {
             continue;
         }
         let (q, _) = closest_point_on_triangle(&p, &c.triangle);
@@ -265,9 +266,9 @@ pub(crate) fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opt
         let mut deepest: Option<(T, Vec3<T>, &Triangle<T>)> = None;
         for c in &frame.hood.triangles {
             let tri = &c.triangle;
-            // A plane at distance 1 or more cannot hold an overlap (the cheap
-            // test that keeps this scan affordable every frame).
-            if c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &tri.a)).abs() >= one) {
+            // A box or plane at distance 1 or more cannot hold an overlap
+            // (the cheap tests that keep this scan affordable every frame).
+            if c.box_distance_sq(&p) >= one || c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &tri.a)).abs() >= one) {
                 continue;
             }
             let (q, _) = closest_point_on_triangle(&p, tri);
