@@ -40,7 +40,8 @@
 //! in `T` after rounding) within `[-MAX_COORD, MAX_COORD]`; radii in
 //! `[MIN_RADIUS, MAX_RADIUS]` with a largest/smallest ratio of at most
 //! `MAX_RADIUS_RATIO`; for moves, the robust response's padding below its
-//! cap ([`padding_in_range`]); for the sweep, a non-degenerate triangle with shape
+//! cap ([`padding_in_range`]) and a start not squeezed within the padding
+//! of two opposite triangles ([`Skip::StartsSqueezed`]); for the sweep, a non-degenerate triangle with shape
 //! factor `k = max |edge|^2 / |(b - a) x (c - a)|` at most `MAX_SHAPE`
 //! (`k >= 2 / sqrt(3)`, equality for an equilateral triangle; `k = 1000`
 //! is an angle of about 0.1 degrees).
@@ -51,7 +52,7 @@
 use rug::Float;
 use std::sync::Arc;
 use sweepslide::detect::{Candidate, DetectOptions, Hit, sweep_robust};
-use sweepslide::geom::{Ellipsoid, Triangle, Vec3, vec3};
+use sweepslide::geom::{Ellipsoid, Triangle, Vec3, closest_point_on_triangle, vec3};
 use sweepslide::lab::metrics::penetration;
 use sweepslide::respond::{MoveOptions, Response, RobustOptions, move_body};
 use sweepslide::world::{TriangleMesh, World};
@@ -94,13 +95,16 @@ pub enum Skip {
     EmptyMesh,
     /// The body starts penetrating the geometry.
     StartsInside,
-    /// The body starts inside the robust response's padding skin (closer to
-    /// the geometry than its padding at the start). Every robust frame ends
-    /// outside that skin, so the response never produces this state itself;
-    /// starting in it (touching a wall, both walls of a zero-clearance slot,
-    /// coincident layers) is a known open defect: see docs/fuzzing.md,
-    /// "Open robust failures".
-    StartsInSkin,
+    /// The body starts squeezed: within the robust response's padding skin
+    /// of two triangles on opposite sides of it (their closest points seen
+    /// from the centre more than 90 degrees apart), as in a slot whose
+    /// clearance is below twice the padding. No position then keeps the
+    /// padding from both, and when the clearance is at the level of
+    /// rounding (a zero-clearance slot) no representable position other
+    /// than the start may lie outside both: the body cannot be moved
+    /// without an exact penetration of the order of the coordinates'
+    /// rounding. See docs/fuzzing.md, F3.
+    StartsSqueezed,
     /// The robust response's padding would reach its cap
     /// (`RobustOptions::max_padding`): see [`padding_in_range`].
     PaddingCap,
@@ -564,6 +568,26 @@ fn start_skin<T: Real>(case: &MoveCase) -> f64 {
     (opts.padding_ulps * u + opts.position_ulps * u * e).min(opts.max_padding)
 }
 
+/// Whether the start lies within the padding skin of two triangles whose
+/// closest points are on opposite sides of the centre ([`Skip::StartsSqueezed`]),
+/// in eSpace and `f64` (a classification of the input, not a measurement:
+/// a triangle within rounding of the skin's edge may fall either way).
+fn squeezed(case: &MoveCase, skin: f64) -> bool {
+    let e = |v: &[f64; 3]| vec3::<f64>(v[0] / case.radii[0], v[1] / case.radii[1], v[2] / case.radii[2]);
+    let centre = e(&case.start);
+    let directions: Vec<Vec3<f64>> = case
+        .triangles
+        .iter()
+        .filter_map(|t| {
+            let tri = Triangle::new(e(&t[0]), e(&t[1]), e(&t[2]));
+            let (q, _) = closest_point_on_triangle(&centre, &tri);
+            let d = &centre - q;
+            (d.norm() < 1.0 + skin).then_some(d)
+        })
+        .collect();
+    directions.iter().enumerate().any(|(i, a)| directions[i + 1..].iter().any(|b| a.dot(b) < 0.0))
+}
+
 /// `penetration` reports world units for a sphere (times its radius) and
 /// eSpace units for an ellipsoid.
 fn skin_scale(case: &MoveCase) -> f64 {
@@ -605,7 +629,9 @@ pub fn prepare<T: Real>(case: &MoveCase) -> Result<Prepared<T>, Skip> {
     }
     match penetration(&world, body.radii(), &start) {
         Some(p) if p > 0.0 => return Err(Skip::StartsInside),
-        Some(p) if -p < start_skin::<T>(case) * skin_scale(case) => return Err(Skip::StartsInSkin),
+        Some(p) if -p < start_skin::<T>(case) * skin_scale(case) && squeezed(case, start_skin::<T>(case)) => {
+            return Err(Skip::StartsSqueezed);
+        }
         _ => {}
     }
     Ok(Prepared { world, body, start })

@@ -106,7 +106,10 @@ impl Adjacency {
     /// least `cos_min`) or the edge is concave seen from the front face (the
     /// neighbour rises on that side; a sphere touching such an edge touches
     /// the neighbouring face too). A vertex is inactive when every triangle
-    /// around it is nearly coplanar with `t` (`|cos| >= cos_min`).
+    /// around it is nearly coplanar with `t` (`|cos| >= cos_min`) and every
+    /// edge at it is shared by exactly two triangles: a vertex that ends a
+    /// border of the surface is a real corner even where the surface is flat
+    /// (a sphere beside a floor's corner, in its plane, touches it there).
     #[must_use]
     pub fn active_features(
         &self,
@@ -119,6 +122,13 @@ impl Adjacency {
             (b - a).cross(&(c - a)).normalize()
         };
         let welded = |t: usize| triangles[t].map(|i| self.weld[i as usize]);
+        let on_boundary = |corner: u32, around: &[u32]| {
+            let w = self.weld[corner as usize];
+            around.iter().any(|&o| {
+                let wo = welded(o as usize);
+                (0..3).any(|e| (wo[e] == w || wo[(e + 1) % 3] == w) && self.neighbours[o as usize][e].is_none())
+            })
+        };
         (0..triangles.len())
             .map(|t| {
                 let n = normal(t);
@@ -144,7 +154,8 @@ impl Adjacency {
                 }
                 for (v, &corner) in triangles[t].iter().enumerate() {
                     let around = self.triangles_around(corner);
-                    if !around.iter().all(|&o| n.dot(&normal(o as usize)).abs() >= cos_min) {
+                    let bent = !around.iter().all(|&o| n.dot(&normal(o as usize)).abs() >= cos_min);
+                    if bent || on_boundary(corner, around) {
                         bits |= 8 << v;
                     }
                 }

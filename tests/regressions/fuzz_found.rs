@@ -2,13 +2,155 @@
 //! their fixes. The minimised inputs are in `fuzz/regressions/`, replayed by
 //! `cargo run --manifest-path fuzz/Cargo.toml --example replay`; F1 (long
 //! sweeps) is pinned by `tests/detect_props.rs`, F2 (the gather box) by its
-//! two inputs there.
+//! two inputs there. The move cases below are the replay's decoded
+//! geometry (`MoveCase`), one triangle soup each, played with `move_body`
+//! and checked with the lab's exact (512-bit) penetration.
 
 use std::path::Path;
 use std::sync::Arc;
+use sweepslide::Real;
 use sweepslide::detect::{DetectOptions, Detection, sweep_world};
 use sweepslide::geom::{Ellipsoid, vec3};
+use sweepslide::lab::metrics::penetration;
+use sweepslide::respond::{MoveOptions, Response, move_body};
 use sweepslide::world::{TriangleMesh, World};
+
+type Soup = [[[f64; 3]; 3]];
+
+/// Plays `frames` (velocity, gravity) with the robust response from
+/// `start` and returns the largest exact penetration at the end of a frame
+/// (positive: inside), after checking that the start was outside.
+fn worst_penetration<T: Real>(soup: &Soup, radii: [f64; 3], start: [f64; 3], frames: &[([f64; 3], [f64; 3])]) -> f64 {
+    let vertices: Vec<[f64; 3]> = soup.iter().flatten().copied().collect();
+    let indices = (0..soup.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    let world = World::<T>::new(Arc::new(TriangleMesh::new(vertices, indices).unwrap()));
+    let body = Ellipsoid::<T>::new(radii).unwrap();
+    let v = |x: [f64; 3]| vec3::<T>(x[0], x[1], x[2]);
+    let mut p = v(start);
+    let at_start = penetration(&world, body.radii(), &p).unwrap_or(f64::NEG_INFINITY);
+    assert!(at_start <= 0.0, "the case must start outside: {at_start:e}");
+    let options = MoveOptions::new(Response::Robust);
+    frames.iter().fold(f64::NEG_INFINITY, |worst, (vel, grav)| {
+        p = move_body(&world, &body, &p, &v(*vel), Some(&v(*grav)), &options).unwrap().position;
+        worst.max(penetration(&world, body.radii(), &p).unwrap_or(f64::NEG_INFINITY))
+    })
+}
+
+/// F5: a flat ellipsoid exactly touching a floor's corner, centred in the
+/// floor's plane, pushed in that plane into the floor, went straight
+/// through (penetration 0.999998): the corner, shared by two coplanar
+/// triangles, counted as an internal vertex, so its contact took the face
+/// normal, which the in-plane motion does not approach. A vertex ending a
+/// border of the surface is now always active.
+#[test]
+fn in_plane_touch_of_a_floor_corner_stops_the_body() {
+    let floor = [
+        [[-50.0, 0.0, -50.0], [-50.0, 0.0, 50.0], [50.0, 0.0, 50.0]],
+        [[-50.0, 0.0, -50.0], [50.0, 0.0, 50.0], [50.0, 0.0, -50.0]],
+    ];
+    let frame = ([-2.760654700963407, 0.0, -1.1720756960832317], [0.0; 3]);
+    let worst =
+        worst_penetration::<f32>(&floor, [1.0, 0.0625, 0.0625], [49.99999998999999, 0.0, 50.06249999999375], &[frame]);
+    assert!(worst <= 0.0, "penetration {worst:e}");
+}
+
+/// F4: two coincident sheets (a fold of dihedral angle 1e-8), the sphere
+/// starting exactly beside their common border in their plane, pushed
+/// down with gravity: it once ended inside three of the four triangles
+/// (3.6% of the radius in `f32`).
+#[test]
+fn coincident_layers_are_not_entered() {
+    let soup = [
+        [
+            [14.50000000020146, 12.360394530596295, -141.30975004163562],
+            [14.49999999979854, 16.389605469403705, -141.30975004203856],
+            [15.838786278864825, 12.360394530880717, -139.80433099784284],
+        ],
+        [
+            [14.49999999979854, 16.389605469403705, -141.30975004203856],
+            [15.838786278461905, 16.389605469688124, -139.80433099824577],
+            [15.838786278864825, 12.360394530880717, -139.80433099784284],
+        ],
+        [
+            [14.50000000020146, 12.360394530596295, -141.30975004163562],
+            [14.49999999979854, 16.389605469403705, -141.30975004203856],
+            [15.838786293516096, 16.389605469688124, -139.80433101163362],
+        ],
+        [
+            [14.50000000020146, 12.360394530596295, -141.30975004163562],
+            [15.838786293516096, 16.389605469688124, -139.80433101163362],
+            [15.838786293919016, 12.360394530880717, -139.8043310112307],
+        ],
+    ];
+    let frame = ([0.0, -0.8058421877614818, 0.0], [0.0, -7.827676687810477, 0.0]);
+    let worst = worst_penetration::<f32>(
+        &soup,
+        [8.058421877614817; 3],
+        [15.838786277656071, 24.448027347302943, -139.80433099905161],
+        &[frame],
+    );
+    assert!(worst <= 0.0, "penetration {worst:e}");
+}
+
+/// F6: rounding-level penetrations after a touching start or a grazing
+/// slide: `1.7e-10` in `f32` with a radius of `7e-3`, `4.7e-16` in `f64` at
+/// 130 from the origin with a radius of 8. Both now end outside.
+#[test]
+fn rounding_level_touches_end_outside() {
+    let small = [
+        [
+            [0.05146500563341514, 0.05146500563341514, 0.05477853114280895],
+            [0.051465005633415134, 0.051465005633415134, 0.04815148012402133],
+            [0.05420441041118794, 0.053329171067307474, 0.048151480124021324],
+        ],
+        [
+            [0.05146500563341514, 0.05146500563341514, 0.05477853114280895],
+            [0.05420441041118794, 0.053329171067307474, 0.048151480124021324],
+            [0.054204410411187946, 0.05332917106730748, 0.054778531142808944],
+        ],
+        [
+            [0.05146500563341514, 0.05146500563341514, 0.05477853114280895],
+            [0.051465005633415134, 0.051465005633415134, 0.04815148012402133],
+            [0.05363528086115106, 0.04896113727879278, 0.05477853114280895],
+        ],
+        [
+            [0.051465005633415134, 0.051465005633415134, 0.04815148012402133],
+            [0.05363528086115106, 0.048961137278792775, 0.04815148012402133],
+            [0.05363528086115106, 0.04896113727879278, 0.05477853114280895],
+        ],
+    ];
+    let frame = ([0.0, -0.0006978305848598664, 0.0], [0.0; 3]);
+    let start = [0.058283853630316795, 0.056105232896625494, 0.04321707273728345];
+    let worst = worst_penetration::<f32>(&small, [0.006978305848598663; 3], start, &[frame; 3]);
+    assert!(worst <= 0.0, "f32: penetration {worst:e}");
+
+    let far = [
+        [
+            [-112.09797071209485, -345.98302331397696, -112.09797071209485],
+            [-112.09797075887185, 121.78708184301024, -112.09797075887185],
+            [43.328043878737034, 121.78708187602996, 62.67322765069018],
+        ],
+        [
+            [-112.09797071209485, -345.98302331397696, -112.09797071209485],
+            [43.328043878737034, 121.78708187602996, 62.67322765069018],
+            [43.32804392551404, -345.98302328095724, 62.67322769746718],
+        ],
+        [
+            [-112.09797071209485, -345.98302331397696, -112.09797071209485],
+            [-112.09797075887185, 121.78708184301024, -112.09797075887185],
+            [43.32804567322603, -345.98302328095724, 62.673226143207046],
+        ],
+        [
+            [-112.09797075887185, 121.78708184301024, -112.09797075887185],
+            [43.328045626449025, 121.78708187602996, 62.67322609643004],
+            [43.32804567322603, -345.98302328095724, 62.673226143207046],
+        ],
+    ];
+    let frame = ([0.0, -0.8058421877614818, 0.0], [0.0; 3]);
+    let start = [44.626857345558214, 129.60489942388097, 64.13369864476638];
+    let worst = worst_penetration::<f64>(&far, [8.058421877614817; 3], start, &[frame]);
+    assert!(worst <= 0.0, "f64: penetration {worst:e}");
+}
 
 /// F7: a vertex the sphere already overlaps (its distance far below the
 /// rounding of 7.8e10 coordinates in f32) gave a negative `t`. The vertex
