@@ -581,7 +581,7 @@ fn squeezed(case: &MoveCase, skin: f64) -> bool {
         .filter_map(|t| {
             let tri = Triangle::new(e(&t[0]), e(&t[1]), e(&t[2]));
             let (q, _) = closest_point_on_triangle(&centre, &tri);
-            let d = &centre - q;
+            let d = centre - q;
             (d.norm() < 1.0 + skin).then_some(d)
         })
         .collect();
