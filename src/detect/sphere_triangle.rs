@@ -267,6 +267,13 @@ pub(crate) fn sweep_robust_within<T: Real>(
     }
     let rel = c.triangle.relative_to(base);
     let p = [&rel.a, &rel.b, &rel.c];
+    // Edges from the given vertices, not from `rel`: the difference of two
+    // nearby floats is rounded relative to the edge's own length, whereas
+    // `rel`'s vertices carry errors of order `u |vertex - base|`, which can
+    // exceed a small triangle far from the start (a fast body) and destroy
+    // its shape.
+    let t = &c.triangle;
+    let edges = [&t.b - &t.a, &t.c - &t.b, &t.a - &t.c];
     let mut normal = c.normal.clone();
     let nearest = (0..3)
         .min_by(|&i, &k| norm_squared(p[i]).partial_cmp(&norm_squared(p[k])).unwrap_or(std::cmp::Ordering::Equal))?;
@@ -317,8 +324,8 @@ pub(crate) fn sweep_robust_within<T: Real>(
         let (dist, sep, local) = match (feature, &normal) {
             (Feature::Face, Some(n)) => (plane_dist.clone(), n.clone(), p[nearest]),
             (Feature::Edge(i), _) => {
-                let (a, b) = (p[i as usize], p[(i as usize + 1) % 3]);
-                let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, b - a) } else { (b, a - b) };
+                let (a, b, e) = (p[i as usize], p[(i as usize + 1) % 3], &edges[i as usize]);
+                let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, e.clone()) } else { (b, -e.clone()) };
                 let perp = -from - &e * (dot(&-from, &e) / norm_squared(&e));
                 let d = norm(&perp);
                 let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
@@ -359,10 +366,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
                 // Orientation against the triangle's own winding normal (not
                 // the side-flipped `n`), so back faces are found too.
                 let winding = c.normal.as_ref().unwrap_or(n);
-                let inside = (0..3).all(|i| {
-                    let (a, b) = (p[i], p[(i + 1) % 3]);
-                    dot(&cross(&(b - a), &(&contact - a)), winding) >= zero
-                });
+                let inside = (0..3).all(|i| dot(&cross(&edges[i], &(&contact - p[i])), winding) >= zero);
                 if inside {
                     return Some(Hit {
                         t,
@@ -385,11 +389,10 @@ pub(crate) fn sweep_robust_within<T: Real>(
         Some(b) => *t < b.t,
     };
     for i in 0..3 {
-        let (a, b) = (p[i], p[(i + 1) % 3]);
-        let e = b - a;
-        let e2 = norm_squared(&e);
-        let m = cross(&e, vel);
-        let k = cross(&e, a);
+        let (a, e) = (p[i], &edges[i]);
+        let e2 = norm_squared(e);
+        let m = cross(e, vel);
+        let k = cross(e, a);
         let c = norm_squared(&k) - &e2;
         if !(c > zero) {
             continue;
@@ -406,7 +409,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
             continue;
         }
         let centre = vel * t.clone();
-        let f = dot(&(&centre - a), &e) / &e2;
+        let f = dot(&(&centre - a), e) / &e2;
         if f >= zero && f <= one {
             best = Some(Touch { t, point: a + e * f, centre, feature: Feature::Edge(i as u8) });
         }

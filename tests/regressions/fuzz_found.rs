@@ -9,8 +9,8 @@
 use std::path::Path;
 use std::sync::Arc;
 use sweepslide::Real;
-use sweepslide::detect::{DetectOptions, Detection, sweep_world};
-use sweepslide::geom::{Ellipsoid, vec3};
+use sweepslide::detect::{Candidate, DetectOptions, Detection, sweep_robust, sweep_world};
+use sweepslide::geom::{Ellipsoid, Feature, Triangle, vec3};
 use sweepslide::lab::metrics::penetration;
 use sweepslide::respond::{MoveOptions, Response, move_body};
 use sweepslide::world::{TriangleMesh, World};
@@ -173,4 +173,28 @@ fn huge_coordinates_never_give_a_negative_time() {
     if let Some(h) = hit {
         assert!((0.0..=1.0).contains(&h.t), "{h:?}");
     }
+}
+
+/// F8: a triangle of size 1e-4 about 5e4 radii from a fast body's start
+/// (`f32`, a sweep of 6.5e4 radii). Its vertices relative to the start
+/// carry errors of about `u * 5e4 = 3e-3`, thirty times its size, and the
+/// edges used to be taken from those: the face's inside test passed on a
+/// shapeless triangle and reported a face hit 1.2 radii from the triangle,
+/// before the true first touch (its vertex 0, at `t = 0.85397335`, from
+/// the 256-bit reference of the fuzz oracle). Edges now come from the
+/// given vertices, rounded relative to their own length.
+#[test]
+fn small_triangle_far_from_a_fast_start_is_hit_on_its_vertex() {
+    let v = |x: [f64; 3]| vec3::<f32>(x[0], x[1], x[2]);
+    let tri = Triangle::new(
+        v([-2.6032847246886852e-5, 9.128978837341798e-5, -0.0001990947587773339]),
+        v([-7.897840266834805e-5, -2.551117917680235e-5, 5.325326229455534e-5]),
+        v([0.00020434566087543232, -3.254895710614889e-5, 7.637849070473214e-5]),
+    );
+    let base = v([-30462.709345823103, -38598.105641180155, -23422.281579150003]);
+    let vel = v([35671.720145893356, 45198.74292372481, 27426.349886141288]);
+    let hit = sweep_robust(&Candidate::lone(0, tri), &base, &vel, &DetectOptions::default(), None).expect("a hit");
+    assert_eq!(hit.feature, Feature::Vertex(0), "{hit:?}");
+    // One radius along this sweep is 1.5e-5 of `t`; rounding allows ~1e-7.
+    assert!((f64::from(hit.t) - 0.8539733474164258).abs() < 1e-6, "{hit:?}");
 }
