@@ -1,15 +1,17 @@
 //! Frame moves on the 100,352-triangle terrain (each response, f32 / f64 /
-//! Mpfr<53>), the BVH, the batch API from 1 to 2 threads, and the lab's
+//! Mpfr<53>) and on the real meshes of `../shared/meshes/`, the BVH, the batch API from 1 to 2 threads, and the lab's
 //! throughput per precision.
 //!
 //! Smoke mode: `cargo bench --bench moves -- --test`.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
+use std::path::PathBuf;
 use std::sync::Arc;
 use sweepslide::geom::{Ellipsoid, Vec3, vec3};
-use sweepslide::lab::scenes::{Scene, Steering, build};
+use sweepslide::lab::scenes::{Scene, Steering, build, meshes_in};
 use sweepslide::lab::{Precision, RunConfig, run};
+
 use sweepslide::respond::{BodyMove, MoveOptions, Response, move_bodies, move_body};
 use sweepslide::world::{Aabb, Bvh, World};
 use sweepslide::{Mpfr, Real};
@@ -68,6 +70,25 @@ fn frame_moves(c: &mut Criterion) {
     moves_in::<f64>(c, &scene, &path, "move_terrain100k", &Response::ALL);
     moves_in::<Mpfr<53>>(c, &scene, &path[..32], "move_terrain100k_mpfr", &[Response::Robust]);
     moves_in::<f64>(c, &scene, &path[..32], "move_terrain100k_mpfr", &[Response::Robust]);
+}
+
+/// The same 256-frame replay on each real mesh of `../shared/meshes/` (or
+/// `$SWEEPSLIDE_MESHES`): the lab's default OBJ scene, a sphere of 2% of the
+/// mesh's diagonal steered by a random walk with gravity. Skipped, with a
+/// note, when the directory holds no mesh.
+fn mesh_moves(c: &mut Criterion) {
+    let dir = std::env::var_os("SWEEPSLIDE_MESHES").map_or_else(|| "../shared/meshes".into(), PathBuf::from);
+    let meshes = meshes_in(&dir);
+    if meshes.is_empty() {
+        eprintln!("move_mesh: no .obj file in {}, skipped", dir.display());
+    }
+    for path in meshes {
+        let scene = Scene::from_obj(&path).unwrap();
+        let path = trajectory(&scene);
+        let group = format!("move_mesh_{}", scene.name);
+        moves_in::<f32>(c, &scene, &path, &group, &Response::ALL);
+        moves_in::<f64>(c, &scene, &path, &group, &Response::ALL);
+    }
 }
 
 fn bvh(c: &mut Criterion) {
@@ -149,5 +170,5 @@ fn lab_throughput(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, frame_moves, bvh, batch, lab_throughput);
+criterion_group!(benches, frame_moves, mesh_moves, bvh, batch, lab_throughput);
 criterion_main!(benches);

@@ -298,7 +298,7 @@ fn runs_are_deterministic_across_thread_counts() {
 #[test]
 fn every_shared_mesh_runs() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
-    let meshes = sweepslide::report::matrix::meshes_in(&dir);
+    let meshes = sweepslide::lab::scenes::meshes_in(&dir);
     if meshes.is_empty() {
         eprintln!("skipped: no meshes in {}", dir.display());
         return;

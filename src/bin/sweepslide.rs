@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use sweepslide::Error;
 use sweepslide::detect::Detection;
-use sweepslide::lab::scenes::{BUILTIN, build};
+use sweepslide::lab::scenes::{self, BUILTIN, build};
 use sweepslide::lab::{Precision, RunConfig, RunOutput, Scene, run};
 use sweepslide::respond::Response;
 
@@ -296,8 +296,8 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
                 message: format!("{} is not a directory", dir.display()),
             }));
         }
-        Some(dir) => matrix::meshes_in(dir),
-        None => matrix::meshes_in(std::path::Path::new("../shared/meshes")),
+        Some(dir) => scenes::meshes_in(dir),
+        None => scenes::meshes_in(std::path::Path::new("../shared/meshes")),
     };
     let (info, entries) = matrix::matrix(args.quick, &meshes);
     let entries = match args.shard {

@@ -13,7 +13,7 @@ use crate::Error;
 use crate::world::TriangleMesh;
 use nalgebra::Vector3;
 use std::f64::consts::PI;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// How the pushing velocity evolves from frame to frame.
@@ -516,4 +516,19 @@ impl Steering {
             }
         }
     }
+}
+
+/// The `.obj` files in `dir`, sorted by name (empty when it does not exist).
+#[must_use]
+pub fn meshes_in(dir: &Path) -> Vec<PathBuf> {
+    let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(Result::ok)
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("obj")))
+                .collect()
+        })
+        .unwrap_or_default();
+    found.sort();
+    found
 }

@@ -7,7 +7,7 @@ use crate::lab::{Precision, RunConfig, Scene};
 use crate::respond::Response;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 
 /// The precisions of the main table: the hardware floats, their MPFR twins,
@@ -236,19 +236,4 @@ pub fn configs(entries: &[Entry]) -> Result<Vec<RunConfig>, Error> {
             })
         })
         .collect()
-}
-
-/// The `.obj` files in `dir`, sorted by name (empty when it does not exist).
-#[must_use]
-pub fn meshes_in(dir: &Path) -> Vec<PathBuf> {
-    let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map(|rd| {
-            rd.filter_map(Result::ok)
-                .map(|e| e.path())
-                .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("obj")))
-                .collect()
-        })
-        .unwrap_or_default();
-    found.sort();
-    found
 }
