@@ -181,22 +181,16 @@ impl<T: Real> Neighbourhood<T> {
         // The BVH's leaves hold several triangles and its bounds are rounded
         // outward; the exact test on each triangle's own box (comparisons
         // are exact) keeps only those that meet the box.
-        let meets = |w: &Triangle<T>| {
-            (0..3).all(|i| {
-                let coords = [&w.a[i], &w.b[i], &w.c[i]];
-                coords.iter().any(|x| **x >= min[i]) && coords.iter().any(|x| **x <= max[i])
-            })
-        };
-        let triangles = scratch
-            .iter()
-            .filter_map(|&t| {
-                let w = world.triangle(t);
-                meets(&w).then(|| {
-                    let triangle = Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c));
-                    Candidate::new(t, triangle, world.mesh().active(t))
-                })
-            })
-            .collect();
+        let meets =
+            |w: &[&Vec3<T>; 3]| (0..3).all(|i| w.iter().any(|v| v[i] >= min[i]) && w.iter().any(|v| v[i] <= max[i]));
+        let mut triangles = Vec::with_capacity(scratch.len());
+        for &t in scratch.iter() {
+            let w = world.corners(t);
+            if meets(&w) {
+                let triangle = Triangle::new(to_e(w[0]), to_e(w[1]), to_e(w[2]));
+                triangles.push(Candidate::new(t, triangle, world.mesh().active(t)));
+            }
+        }
         Neighbourhood { origin, triangles }
     }
 
@@ -234,7 +228,7 @@ pub fn earliest_hit<'a, T: Real + 'a>(
         let hit = match detection {
             Detection::Fauerby => sweep_fauerby(&c.triangle, base, vel, c.index),
             Detection::Robust if swept.misses(c) => None,
-            Detection::Robust => sweep_robust_within(c, base, vel, opts, limit),
+            Detection::Robust => sweep_robust_within(c, base, vel, &swept, opts, limit),
         };
         if let Some(h) = hit {
             let better = match &best {

@@ -8,7 +8,7 @@ use crate::Real;
 use crate::world::ActiveFeatures;
 
 use crate::geom::{
-    Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize,
+    Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, max_abs, norm, norm_squared, normalize,
 };
 
 /// Where and how a contact was found: the sphere centre and the contact
@@ -193,7 +193,7 @@ pub fn sweep_robust<T: Real>(
     if reach.misses(c) {
         return None;
     }
-    sweep_robust_within(c, base, vel, opts, limit)
+    sweep_robust_within(c, base, vel, &reach, opts, limit)
 }
 
 /// The region the unit sphere swept from `base` by `vel` can touch, for the
@@ -208,6 +208,8 @@ pub(crate) struct SweptBox<T: Real> {
     hi: Vec3<T>,
     mid: Vec3<T>,
     ball_sq: T,
+    /// `|vel|`.
+    speed: T,
 }
 
 /// The radius plus the margin every quick rejection of the robust sweep
@@ -219,13 +221,14 @@ fn reach<T: Real>() -> T {
 impl<T: Real> SweptBox<T> {
     pub(crate) fn new(base: &Vec3<T>, vel: &Vec3<T>) -> Self {
         let end = base + vel;
-        let magnitude = base.iter().chain(end.iter()).fold(T::zero(), |m, x| m.max(x.abs()));
+        let magnitude = max_abs(&end, max_abs(base, T::zero()));
         let reach = reach::<T>() + T::c(8.0 * T::unit_roundoff()) * magnitude;
         let lo = Vec3::from_fn(|i, _| base[i].clone().min(end[i].clone()) - &reach);
         let hi = Vec3::from_fn(|i, _| base[i].clone().max(end[i].clone()) + &reach);
         let mid = base + vel * T::c(0.5);
-        let ball = norm(vel) * T::c(0.5) + reach;
-        SweptBox { lo, hi, mid, ball_sq: ball.clone() * ball }
+        let speed = norm(vel);
+        let ball = speed.clone() * T::c(0.5) + reach;
+        SweptBox { lo, hi, mid, ball_sq: ball.clone() * ball, speed }
     }
 
     /// Whether the candidate's box lies wholly outside the swept box or the
@@ -239,11 +242,12 @@ impl<T: Real> SweptBox<T> {
     }
 }
 
-/// [`sweep_robust`] for a candidate whose box meets the [`SweptBox`].
+/// [`sweep_robust`] for a candidate whose box meets `swept`.
 pub(crate) fn sweep_robust_within<T: Real>(
     c: &Candidate<T>,
     base: &Vec3<T>,
     vel: &Vec3<T>,
+    swept: &SweptBox<T>,
     opts: &DetectOptions,
     limit: Option<&T>,
 ) -> Option<Hit<T>> {
@@ -299,7 +303,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
             return None;
         }
     }
-    let far = p.iter().flat_map(|v| v.iter()).fold(one.clone(), |m, x| m.max(x.abs()));
+    let far = max_abs(p[2], max_abs(p[1], max_abs(p[0], one.clone())));
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
     // The closest point now. The centre moves at most `|vel|`, so a
@@ -309,7 +313,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let origin = Vec3::zeros();
     let (closest, feature) = closest_point_on_triangle(&origin, &rel);
     let slack = T::c(64.0 * T::unit_roundoff()) * &far;
-    let gap_bound = (one.clone() + norm(vel)) * &reach + &slack;
+    let gap_bound = (one.clone() + &swept.speed) * &reach + &slack;
     let closest_sq = norm_squared(&closest);
     if closest_sq > gap_bound.clone() * gap_bound {
         return None;
@@ -338,7 +342,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
             }
         };
         let sep = if is_active(feature, active) { sep } else { face_normal.clone() };
-        let scale = local.iter().fold(one.clone(), |m, x| m.max(x.abs()));
+        let scale = max_abs(local, one.clone());
         let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * &scale;
         if dist <= one.clone() + &tol {
             if dot(&sep, vel) < zero && wins(&zero) {

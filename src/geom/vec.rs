@@ -82,3 +82,11 @@ pub fn normalize<T: Real>(a: &Vec3<T>) -> Option<Vec3<T>> {
 pub fn is_finite<T: Real>(a: &Vec3<T>) -> bool {
     a.x.is_finite() && a.y.is_finite() && a.z.is_finite()
 }
+
+/// The largest absolute component, `max(floor, |a.x|, |a.y|, |a.z|)`
+/// (exact: no rounding).
+#[inline]
+#[must_use]
+pub fn max_abs<T: Real>(a: &Vec3<T>, floor: T) -> T {
+    floor.max(a.x.abs()).max(a.y.abs()).max(a.z.abs())
+}

@@ -198,23 +198,29 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
+        if !self.nodes[0].bounds.overlaps(query) {
+            return;
+        }
+        // Only nodes that overlap the query are pushed: each child is tested
+        // before it goes on the stack.
         let mut stack = [0u32; MAX_DEPTH + 2];
         let mut top = 1;
         while top > 0 {
             top -= 1;
             let id = stack[top];
             let node = &self.nodes[id as usize];
-            if !node.bounds.overlaps(query) {
-                continue;
-            }
             if node.count > 0 {
                 let first = node.index as usize;
                 out.extend_from_slice(&self.order[first..first + node.count as usize]);
             } else {
-                // Left child directly follows its parent.
-                stack[top] = node.index;
-                stack[top + 1] = id + 1;
-                top += 2;
+                // Left child directly follows its parent; the right one is
+                // pushed first so the left is visited first, as before.
+                for child in [node.index, id + 1] {
+                    if self.nodes[child as usize].bounds.overlaps(query) {
+                        stack[top] = child;
+                        top += 1;
+                    }
+                }
             }
         }
     }

@@ -268,8 +268,14 @@ impl<T: Real> World<T> {
     /// Triangle `t` in backend `T`.
     #[must_use]
     pub fn triangle(&self, t: u32) -> Triangle<T> {
-        let [a, b, c] = self.mesh.triangles[t as usize].map(|i| self.vertices[i as usize].clone());
+        let [a, b, c] = self.corners(t).map(Clone::clone);
         Triangle::new(a, b, c)
+    }
+
+    /// The corners of triangle `t` in backend `T`, borrowed.
+    #[must_use]
+    pub fn corners(&self, t: u32) -> [&Vec3<T>; 3] {
+        self.mesh.triangles[t as usize].map(|i| &self.vertices[i as usize])
     }
 
     /// Replaces `out` with every triangle whose bounds overlap the box
