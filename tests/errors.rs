@@ -483,3 +483,54 @@ fn obj_degenerate_face_is_skipped_with_its_line() {
         other => panic!("expected Error::Obj, got {other:?}"),
     }
 }
+
+// ---------------------------------------------------------------------------
+// Scene::from_case_file (fuzz cases as lab scenes)
+// ---------------------------------------------------------------------------
+
+#[cfg(feature = "lab")]
+#[test]
+fn malformed_case_files_are_invalid_arguments_with_the_reason() {
+    use sweepslide::lab::Scene;
+    let dir = std::env::temp_dir().join(format!("sweepslide-cases-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let tri = "[[0,0,0],[1,0,0],[0,0,1]]";
+    let cases = [
+        ("syntax", "{\n  \"triangles\": [\n  oops\n}", "line 3"),
+        (
+            "no-frames",
+            &format!(r#"{{"triangles": [{tri}], "radii": [1,1,1], "start": [0,2,0], "frames": []}}"#),
+            "no frame",
+        ),
+        (
+            "gravity",
+            &format!(
+                r#"{{"triangles": [{tri}], "radii": [1,1,1], "start": [0,2,0], "frames": [
+                {{"velocity": [0,-1,0], "gravity": [0,-1,0]}}, {{"velocity": [0,-1,0], "gravity": null}}]}}"#
+            ),
+            "gravity changes",
+        ),
+        ("missing", r#"{"radii": [1,1,1], "start": [0,2,0], "frames": []}"#, "triangles"),
+    ];
+    for (name, text, reason) in cases {
+        let path = dir.join(format!("{name}.json"));
+        std::fs::write(&path, text).unwrap();
+        match Scene::from_case_file(&path) {
+            Err(Error::InvalidArgument { what, message }) => {
+                assert!(what.contains(name), "{what}");
+                assert!(message.contains(reason), "{name}: {message}");
+            }
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    assert!(matches!(Scene::from_case_file(&dir.join("absent.json")), Err(Error::Io { .. })));
+    // A well-formed case with a zero-area triangle keeps the others and lists it.
+    let path = dir.join("degenerate.json");
+    let text = format!(
+        r#"{{"case": {{"triangles": [{tri}, [[0,0,0],[1,0,0],[2,0,0]]], "radii": [1,1,1], "start": [0,2,0],
+        "frames": [{{"velocity": [0,-1,0], "gravity": null}}]}}}}"#
+    );
+    std::fs::write(&path, text).unwrap();
+    let scene = Scene::from_case_file(&path).unwrap();
+    assert_eq!((scene.mesh.len(), scene.mesh.skipped().len()), (1, 1));
+}

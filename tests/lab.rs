@@ -326,3 +326,36 @@ fn every_shared_mesh_runs() {
         }
     }
 }
+
+/// The fuzz-found failures kept as lab scenes (`scenes/fuzz/`, finding
+/// files of the `compare_responses` target): each reproduces in the lab
+/// what the fuzzer recorded for Fauerby's or Linahan's response (an exact
+/// penetration or a NaN position, in the recorded precision), and the
+/// robust response runs every one of them clean in `f32` and `f64`.
+#[test]
+fn fuzz_found_scenes_reproduce_and_the_robust_response_passes_them() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz");
+    let cases = sweepslide::lab::scenes::cases_in(&dir);
+    assert!(cases.len() >= 5, "{} cases in {}", cases.len(), dir.display());
+    for path in cases {
+        let finding: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let scene = Arc::new(sweepslide::lab::Scene::from_case_file(&path).unwrap());
+        let result = |response, precision| {
+            run(&RunConfig { scene: scene.clone(), response, detection: None, precision, seed: 1 }).unwrap().result
+        };
+        let recorded = match finding["response"].as_str().unwrap() {
+            "fauerby" => Response::Fauerby,
+            _ => Response::Linahan,
+        };
+        let precision = Precision::parse(finding["precision"].as_str().unwrap()).unwrap();
+        let r = result(recorded, precision);
+        match finding["kind"].as_str().unwrap() {
+            "nan" => assert!(r.nan_frames > 0, "{}: {r:?}", path.display()),
+            _ => assert!(r.max_penetration > 0.0 && r.penetrating_frames > 0, "{}: {r:?}", path.display()),
+        }
+        for precision in [Precision::F32, Precision::F64] {
+            let r = result(Response::Robust, precision);
+            assert_eq!((r.penetrating_frames, r.nan_frames), (0, 0), "{} {precision}: {r:?}", path.display());
+        }
+    }
+}

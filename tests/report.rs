@@ -21,7 +21,7 @@ fn timeless(records: Vec<Record>) -> Vec<Record> {
 
 #[test]
 fn two_shards_merged_give_the_unsharded_results() {
-    let (info, entries) = matrix(true, &[]);
+    let (info, entries) = matrix(true, &[], &[]);
     // A slice of the matrix that mixes scenes, responses, precisions and the
     // dial, kept small so the test is quick; indices are renumbered so it
     // is a matrix of its own.
@@ -110,7 +110,7 @@ fn quick_report_is_complete_and_self_contained() {
         }
     }
     assert!(html.contains("<svg"), "plots are inline");
-    let (info, entries) = matrix(true, &[]);
+    let (info, entries) = matrix(true, &[], &[]);
     let results: Vec<serde_json::Value> =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     assert_eq!(results.len(), info.runs, "one record per run");

@@ -69,6 +69,9 @@ struct ReportArgs {
     /// Directory of OBJ meshes to add as scenes (default: ../shared/meshes when it exists).
     #[arg(long)]
     meshes: Option<PathBuf>,
+    /// Directory of fuzz cases (.json) to add as scenes (default: scenes/fuzz when it exists).
+    #[arg(long)]
+    cases: Option<PathBuf>,
     /// Run only the K-th of N slices of the matrix (1-based), e.g. 2/8; merge the shards with `sweepslide merge`.
     #[arg(long, value_parser = parse_shard)]
     shard: Option<(usize, usize)>,
@@ -94,11 +97,14 @@ enum DetectionArg {
 #[derive(clap::Args)]
 struct RunArgs {
     /// Built-in scene, `name` or `name:parameter` (see `sweepslide scenes`).
-    #[arg(long, conflicts_with = "mesh", required_unless_present = "mesh")]
+    #[arg(long, conflicts_with_all = ["mesh", "case"], required_unless_present_any = ["mesh", "case"])]
     scene: Option<String>,
     /// A Wavefront OBJ file to use as the scene.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "case")]
     mesh: Option<PathBuf>,
+    /// A fuzz case or finding (.json, as the fuzz targets write them) to use as the scene.
+    #[arg(long)]
+    case: Option<PathBuf>,
     /// Collision response.
     #[arg(long, value_enum, default_value = "robust")]
     response: ResponseArg,
@@ -181,10 +187,10 @@ impl From<Error> for Failure {
 }
 
 fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
-    let (mut scene, built_in) = match (&args.scene, &args.mesh) {
-        (Some(name), _) => (build(name, args.seed)?, true),
-        (None, Some(path)) => {
-            let s = Scene::from_obj(path)?;
+    let (mut scene, built_in) = match (&args.scene, &args.mesh, &args.case) {
+        (Some(name), _, _) => (build(name, args.seed)?, true),
+        (None, Some(path), _) | (None, None, Some(path)) => {
+            let s = if args.mesh.is_some() { Scene::from_obj(path)? } else { Scene::from_case_file(path)? };
             if !s.mesh.skipped().is_empty() {
                 eprintln!("warning: {} face(s) of {} skipped:", s.mesh.skipped().len(), path.display());
                 for e in s.mesh.skipped().iter().take(5) {
@@ -193,7 +199,7 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
             }
             (s, false)
         }
-        (None, None) => unreachable!("clap requires --scene or --mesh"),
+        (None, None, None) => unreachable!("clap requires --scene, --mesh or --case"),
     };
     if let Some(f) = args.frames {
         scene.frames = f;
@@ -289,17 +295,18 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
 fn report_command(args: &ReportArgs) -> Result<(), Failure> {
     use std::io::IsTerminal;
     use sweepslide::report::{Runs, matrix, render, run_entries, write_runs};
-    let meshes = match &args.meshes {
-        Some(dir) if !dir.is_dir() => {
-            return Err(Failure(Error::InvalidArgument {
-                what: "--meshes".into(),
+    let files_in =
+        |given: &Option<PathBuf>, flag: &str, default: &str, list: fn(&std::path::Path) -> Vec<PathBuf>| match given {
+            Some(dir) if !dir.is_dir() => Err(Failure(Error::InvalidArgument {
+                what: flag.into(),
                 message: format!("{} is not a directory", dir.display()),
-            }));
-        }
-        Some(dir) => scenes::meshes_in(dir),
-        None => scenes::meshes_in(std::path::Path::new("../shared/meshes")),
-    };
-    let (info, entries) = matrix::matrix(args.quick, &meshes);
+            })),
+            Some(dir) => Ok(list(dir)),
+            None => Ok(list(std::path::Path::new(default))),
+        };
+    let meshes = files_in(&args.meshes, "--meshes", "../shared/meshes", scenes::meshes_in)?;
+    let cases = files_in(&args.cases, "--cases", "scenes/fuzz", scenes::cases_in)?;
+    let (info, entries) = matrix::matrix(args.quick, &meshes, &cases);
     let entries = match args.shard {
         Some((k, n)) => matrix::shard(entries, k, n)?,
         None => entries,

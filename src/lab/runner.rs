@@ -272,6 +272,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         motion: match scene.motion {
             super::scenes::Motion::Constant => "constant".to_string(),
             super::scenes::Motion::RandomWalk { .. } => "random_walk".to_string(),
+            super::scenes::Motion::Scripted { .. } => "scripted".to_string(),
         },
         max_penetration: max_pen,
         penetrating_frames: penetrating,

@@ -29,6 +29,12 @@ pub enum Motion {
         /// Largest turn per frame, in degrees.
         turn_deg: f64,
     },
+    /// A recorded velocity per frame (a fuzz case); frames beyond the
+    /// list repeat its last velocity.
+    Scripted {
+        /// The pushing displacement of each frame, in order.
+        velocities: Vec<[f64; 3]>,
+    },
 }
 
 /// A scene: geometry plus the default body and motion.
@@ -464,6 +470,67 @@ impl Scene {
         })
     }
 
+    /// A scene made of a fuzz case (`fuzz/src/oracle.rs`'s `MoveCase` as
+    /// JSON: a triangle soup, radii, start and frames), or of a finding file
+    /// written by the `compare_responses` fuzz target (the case sits under
+    /// its `"case"` key). The velocities are replayed frame by frame in
+    /// `f64` exactly as recorded; the gravity must be the same in every
+    /// frame (the lab's scenes have one gravity). Triangles degenerate in
+    /// `f64` are skipped and listed by [`TriangleMesh::skipped`], as the
+    /// fuzz oracle does.
+    ///
+    /// # Errors
+    /// [`Error::Io`] if the file cannot be read; [`Error::InvalidArgument`]
+    /// for malformed JSON (with its line and column), no frame, or gravity
+    /// that changes between frames; the mesh's errors.
+    pub fn from_case_file(path: &Path) -> Result<Self, Error> {
+        #[derive(serde::Deserialize)]
+        struct Frame {
+            velocity: [f64; 3],
+            gravity: Option<[f64; 3]>,
+        }
+        #[derive(serde::Deserialize)]
+        struct Case {
+            triangles: Vec<[[f64; 3]; 3]>,
+            radii: [f64; 3],
+            start: [f64; 3],
+            frames: Vec<Frame>,
+        }
+        let bad = |message: String| Error::InvalidArgument { what: path.display().to_string(), message };
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })?;
+        let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        let case: Case =
+            serde_json::from_value(value.get("case").unwrap_or(&value).clone()).map_err(|e| bad(e.to_string()))?;
+        let gravity = |f: &Frame| f.gravity.unwrap_or([0.0; 3]);
+        let first = case.frames.first().ok_or_else(|| bad("the case has no frame".into()))?;
+        if case.frames.iter().any(|f| gravity(f) != gravity(first)) {
+            return Err(bad("the gravity changes between frames; a lab scene has one gravity".into()));
+        }
+        let vertices: Vec<[f64; 3]> = case.triangles.iter().flatten().copied().collect();
+        let indices = (0..case.triangles.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+        let mesh = TriangleMesh::new_skipping_invalid(vertices, indices)?;
+        let name = path.file_stem().map_or_else(|| path.display().to_string(), |s| s.to_string_lossy().into_owned());
+        let velocities: Vec<[f64; 3]> = case.frames.iter().map(|f| f.velocity).collect();
+        let motion = if velocities.iter().all(|v| *v == velocities[0]) {
+            Motion::Constant
+        } else {
+            Motion::Scripted { velocities: velocities.clone() }
+        };
+        Ok(Scene {
+            name: format!("case:{name}"),
+            description: format!("fuzz case {} ({} triangles)", path.display(), mesh.len()),
+            mesh: Arc::new(mesh),
+            start: case.start,
+            radii: case.radii,
+            velocity: velocities[0],
+            gravity: gravity(first),
+            frames: velocities.len(),
+            motion,
+            ideal: None,
+        })
+    }
+
     /// The scene moved by `offset` (geometry and start), rounded again to
     /// `f32` for built-in scenes so every backend still sees the same
     /// values (the shape may change by that rounding, about `6e-8 |offset|`).
@@ -494,26 +561,32 @@ impl Scene {
 pub struct Steering {
     heading: f64,
     rng: Rng,
+    frame: usize,
 }
 
 impl Steering {
     /// The state at frame 0 of `scene` for `seed`.
     #[must_use]
     pub fn new(scene: &Scene, seed: u64) -> Self {
-        Steering { heading: scene.velocity[2].atan2(scene.velocity[0]), rng: Rng::new(seed ^ 0x57ee_0000_0000_0001) }
+        let rng = Rng::new(seed ^ 0x57ee_0000_0000_0001);
+        Steering { heading: scene.velocity[2].atan2(scene.velocity[0]), rng, frame: 0 }
     }
 
     /// The pushing velocity of the next frame, rounded to `f32` like the
     /// scene.
+    /// A scripted velocity is returned as recorded (`f64`).
     pub fn next(&mut self, scene: &Scene) -> [f64; 3] {
-        match scene.motion {
+        let frame = self.frame;
+        self.frame += 1;
+        match &scene.motion {
             Motion::Constant => scene.velocity,
             Motion::RandomWalk { turn_deg } => {
-                self.heading += self.rng.range(-turn_deg, turn_deg).to_radians();
+                self.heading += self.rng.range(-turn_deg, *turn_deg).to_radians();
                 let [vx, vy, vz] = scene.velocity;
                 let speed = vx.hypot(vz);
                 q3([speed * self.heading.cos(), vy, speed * self.heading.sin()])
             }
+            Motion::Scripted { velocities } => velocities.get(frame).or(velocities.last()).copied().unwrap_or([0.0; 3]),
         }
     }
 }
@@ -521,11 +594,22 @@ impl Steering {
 /// The `.obj` files in `dir`, sorted by name (empty when it does not exist).
 #[must_use]
 pub fn meshes_in(dir: &Path) -> Vec<PathBuf> {
+    files_in(dir, "obj")
+}
+
+/// The fuzz cases (`.json`, see [`Scene::from_case_file`]) in `dir`, sorted
+/// by name (empty when it does not exist).
+#[must_use]
+pub fn cases_in(dir: &Path) -> Vec<PathBuf> {
+    files_in(dir, "json")
+}
+
+fn files_in(dir: &Path, extension: &str) -> Vec<PathBuf> {
     let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
         .map(|rd| {
             rd.filter_map(Result::ok)
                 .map(|e| e.path())
-                .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("obj")))
+                .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case(extension)))
                 .collect()
         })
         .unwrap_or_default();

@@ -56,6 +56,11 @@ pub enum SceneSource {
         /// Its path.
         path: PathBuf,
     },
+    /// A fuzz case file ([`Scene::from_case_file`]).
+    Case {
+        /// Its path.
+        path: PathBuf,
+    },
 }
 
 /// One run of the matrix.
@@ -84,6 +89,9 @@ pub struct MatrixInfo {
     pub quick: bool,
     /// The meshes included.
     pub meshes: Vec<PathBuf>,
+    /// The fuzz cases included.
+    #[serde(default)]
+    pub cases: Vec<PathBuf>,
     /// Number of runs in the whole matrix.
     pub runs: usize,
 }
@@ -108,7 +116,7 @@ fn is_seeded(spec: &str) -> bool {
 
 /// The whole matrix, in its fixed order.
 #[must_use]
-pub fn matrix(quick: bool, meshes: &[PathBuf]) -> (MatrixInfo, Vec<Entry>) {
+pub fn matrix(quick: bool, meshes: &[PathBuf], cases: &[PathBuf]) -> (MatrixInfo, Vec<Entry>) {
     let frames = |default: usize| if quick { default.min(150) } else { default };
     let mut sources: Vec<(SceneSource, bool, usize)> = BUILTIN
         .iter()
@@ -123,6 +131,10 @@ pub fn matrix(quick: bool, meshes: &[PathBuf]) -> (MatrixInfo, Vec<Entry>) {
     }
     for path in meshes {
         sources.push((SceneSource::Mesh { path: path.clone() }, true, 300));
+    }
+    for path in cases {
+        let recorded = Scene::from_case_file(path).map_or(1, |s| s.frames);
+        sources.push((SceneSource::Case { path: path.clone() }, false, recorded));
     }
     let mut entries = Vec::new();
     for (source, seeded, default) in &sources {
@@ -158,7 +170,7 @@ pub fn matrix(quick: bool, meshes: &[PathBuf]) -> (MatrixInfo, Vec<Entry>) {
             }
         }
     }
-    (MatrixInfo { quick, meshes: meshes.to_vec(), runs: entries.len() }, entries)
+    (MatrixInfo { quick, meshes: meshes.to_vec(), cases: cases.to_vec(), runs: entries.len() }, entries)
 }
 
 fn default_frames(spec: &str) -> usize {
@@ -212,6 +224,7 @@ pub fn configs(entries: &[Entry]) -> Result<Vec<RunConfig>, Error> {
                         SceneSource::Builtin { spec, offset } => {
                             build(spec, e.seed)?.offset(offset.map(f64::from_bits), true)?
                         }
+                        SceneSource::Case { path } => Scene::from_case_file(path)?,
                         SceneSource::Mesh { path } => match meshes.get(path) {
                             Some(s) => s.clone(),
                             None => {
