@@ -91,7 +91,7 @@ fn quick_report_is_complete_and_self_contained() {
         ])
         .status();
     // A missing --meshes directory is an error (exit 2); with none, the
-    // matrix is the built-in one.
+    // matrix is the built-in one plus the fuzz cases of scenes/fuzz.
     assert_eq!(status.unwrap().code(), Some(2));
     let empty = out.join("empty-meshes");
     std::fs::create_dir_all(&empty).unwrap();
@@ -110,7 +110,9 @@ fn quick_report_is_complete_and_self_contained() {
         }
     }
     assert!(html.contains("<svg"), "plots are inline");
-    let (info, entries) = matrix(true, &[], &[]);
+    let cases = sweepslide::lab::scenes::cases_in(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz"));
+    assert!(!cases.is_empty());
+    let (info, entries) = matrix(true, &[], &cases);
     let results: Vec<serde_json::Value> =
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     assert_eq!(results.len(), info.runs, "one record per run");

@@ -107,9 +107,10 @@ impl Adjacency {
     /// neighbour rises on that side; a sphere touching such an edge touches
     /// the neighbouring face too). A vertex is inactive when every triangle
     /// around it is nearly coplanar with `t` (`|cos| >= cos_min`) and every
-    /// edge at it is shared by exactly two triangles: a vertex that ends a
-    /// border of the surface is a real corner even where the surface is flat
-    /// (a sphere beside a floor's corner, in its plane, touches it there).
+    /// edge at it, of every triangle around it, is inactive: a vertex that
+    /// ends a border of the surface, or a fold, is a real corner even where
+    /// the triangles around it are (anti)parallel (a sphere beside a floor's
+    /// corner, in its plane, touches it there).
     #[must_use]
     pub fn active_features(
         &self,
@@ -122,14 +123,7 @@ impl Adjacency {
             (b - a).cross(&(c - a)).normalize()
         };
         let welded = |t: usize| triangles[t].map(|i| self.weld[i as usize]);
-        let on_boundary = |corner: u32, around: &[u32]| {
-            let w = self.weld[corner as usize];
-            around.iter().any(|&o| {
-                let wo = welded(o as usize);
-                (0..3).any(|e| (wo[e] == w || wo[(e + 1) % 3] == w) && self.neighbours[o as usize][e].is_none())
-            })
-        };
-        (0..triangles.len())
+        let edge_bits: Vec<u8> = (0..triangles.len())
             .map(|t| {
                 let n = normal(t);
                 let w = welded(t);
@@ -152,10 +146,26 @@ impl Adjacency {
                         bits |= 1 << e;
                     }
                 }
+                bits
+            })
+            .collect();
+        // An active edge (a border, a crease, a fold) at a vertex makes it a
+        // real corner.
+        let ends_active_edge = |corner: u32, around: &[u32]| {
+            let w = self.weld[corner as usize];
+            around.iter().any(|&o| {
+                let wo = welded(o as usize);
+                (0..3).any(|e| (wo[e] == w || wo[(e + 1) % 3] == w) && edge_bits[o as usize] & (1 << e) != 0)
+            })
+        };
+        (0..triangles.len())
+            .map(|t| {
+                let n = normal(t);
+                let mut bits = edge_bits[t];
                 for (v, &corner) in triangles[t].iter().enumerate() {
                     let around = self.triangles_around(corner);
                     let bent = !around.iter().all(|&o| n.dot(&normal(o as usize)).abs() >= cos_min);
-                    if bent || on_boundary(corner, around) {
+                    if bent || ends_active_edge(corner, around) {
                         bits |= 8 << v;
                     }
                 }
