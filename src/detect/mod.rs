@@ -14,7 +14,7 @@ pub use sphere_triangle::{fauerby_point_in_triangle, sweep_fauerby, sweep_robust
 
 use sphere_triangle::{SweptBox, sweep_robust_within};
 
-use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, is_finite, norm, normalize};
+use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, is_finite, norm, norm_squared, normalize};
 use crate::world::{ActiveFeatures, World};
 use crate::{Error, Real};
 
@@ -128,17 +128,27 @@ pub struct Candidate<T: Real> {
     pub lo: Vec3<T>,
     /// Upper corner of its box.
     pub hi: Vec3<T>,
+    /// Shape factor `k = max |edge|^2 / |(b - a) x (c - a)|` (at least
+    /// `2 / sqrt(3)`; large for a sliver, infinite when degenerate in this
+    /// precision): the closest point of a triangle is computed with an error
+    /// of order `u k` times the coordinates, so the rejections that use it
+    /// widen their margin by `k`.
+    pub shape: T,
 }
 
 impl<T: Real> Candidate<T> {
     /// A candidate from a triangle of a mesh.
     #[must_use]
     pub fn new(index: u32, triangle: Triangle<T>, active: ActiveFeatures) -> Self {
-        let normal = normalize(&triangle.unnormalized_normal());
+        let raw = triangle.unnormalized_normal();
+        let normal = normalize(&raw);
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
         let lo = Vec3::from_fn(|i, _| a[i].clone().min(b[i].clone()).min(c[i].clone()));
         let hi = Vec3::from_fn(|i, _| a[i].clone().max(b[i].clone()).max(c[i].clone()));
-        Candidate { index, triangle, active, normal, lo, hi }
+        let longest = [b - a, c - b, a - c].iter().map(norm_squared).fold(T::zero(), |m, x| m.max(x));
+        let area2 = norm(&raw);
+        let shape = if area2 > T::zero() && area2.is_finite() { longest / area2 } else { T::c(f64::INFINITY) };
+        Candidate { index, triangle, active, normal, lo, hi, shape }
     }
 
     /// The squared distance from `p` to this candidate's box (zero inside):

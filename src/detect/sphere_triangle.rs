@@ -308,11 +308,13 @@ pub(crate) fn sweep_robust_within<T: Real>(
 
     // The closest point now. The centre moves at most `|vel|`, so a
     // triangle farther than `1 + |vel|` cannot be touched (the margin covers
-    // the closest point's rounding, of order `u * far`): this rejects most
-    // near misses before the edge and vertex quadratics.
+    // the closest point's rounding, of order `u * far * k` with `k` the
+    // shape factor: Ericson's barycentric closest point drifts along a
+    // sliver): this rejects most near misses before the edge and vertex
+    // quadratics.
     let origin = Vec3::zeros();
     let (closest, feature) = closest_point_on_triangle(&origin, &rel);
-    let slack = T::c(64.0 * T::unit_roundoff()) * &far;
+    let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape;
     let gap_bound = (one.clone() + &swept.speed) * &reach + &slack;
     let closest_sq = norm_squared(&closest);
     if closest_sq > gap_bound.clone() * gap_bound {

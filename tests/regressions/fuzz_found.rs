@@ -269,3 +269,22 @@ fn touching_start_on_a_fold_vertex_moves_clear() {
     );
     assert!(worst <= 0.0, "penetration {worst:e}");
 }
+
+/// F10 (post-fix run of `compare_responses`): a sphere dropped onto a
+/// sliver (sides of 10 radii, 0.0017 wide, `f32`) passed through it: the
+/// closest point, computed with Ericson's barycentric formula, drifts along
+/// a sliver by `u k` times the coordinates (`k` the shape factor) and put
+/// it 1.16 radii away, so the new distance-bound rejection discarded the
+/// triangle. The margins that use the closest point now scale with `k`.
+#[test]
+fn sphere_dropped_on_a_sliver_stops_on_it() {
+    let soup = [[
+        [0.5076801446137422, -0.29455293644405317, -0.63618098196012],
+        [0.21737323740238873, -0.29455293644405317, -0.31545158193605183],
+        [0.0554889675762722, -0.29455293644405317, -0.1367218935342685],
+    ]];
+    let start = [0.15675165153234097, -0.24919962861878642, -0.24855051493830738];
+    let frame = ([0.0, -0.004531583637600818, 0.0], [0.0; 3]);
+    let worst = worst_penetration::<f32>(&soup, [0.04531583637600818; 3], start, &[frame]);
+    assert!(worst <= 0.0, "penetration {worst:e}");
+}
