@@ -306,6 +306,39 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let far = max_abs(p[2], max_abs(p[1], max_abs(p[0], one.clone())));
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
+    // Face interior: the plane reached with the contact point inside.
+    let face_hit = || {
+        let n = normal.as_ref()?;
+        let nv = dot(n, vel);
+        if !(nv < zero && plane_dist > one) {
+            return None;
+        }
+        let t = (plane_dist.clone() - &one) / -nv;
+        if !wins(&t) {
+            return None;
+        }
+        let contact = vel * t.clone() - n;
+        // Orientation against the triangle's own winding normal (not the
+        // side-flipped `n`), so back faces are found too.
+        let winding = c.normal.as_ref().unwrap_or(n);
+        let inside = (0..3).all(|i| dot(&cross(&edges[i], &(&contact - p[i])), winding) >= zero);
+        inside.then(|| Hit {
+            t,
+            point: contact + base,
+            normal: n.clone(),
+            feature: Feature::Face,
+            triangle: index,
+            started_overlapping: false,
+        })
+    };
+    // Clear of the plane by more than the margin, the body cannot be
+    // touching anything now: a face hit needs no closest point.
+    if plane_dist > reach
+        && let Some(hit) = face_hit()
+    {
+        return Some(hit);
+    }
+
     // The closest point now. The centre moves at most `|vel|`, so a
     // triangle farther than `1 + |vel|` cannot be touched (the margin covers
     // the closest point's rounding, of order `u * far * k` with `k` the
@@ -362,29 +395,10 @@ pub(crate) fn sweep_robust_within<T: Real>(
         }
     }
 
-    // Face interior.
-    if let Some(n) = &normal {
-        let nv = dot(n, vel);
-        if nv < zero && plane_dist > one {
-            let t = (plane_dist - &one) / -nv;
-            if wins(&t) {
-                let contact = vel * t.clone() - n;
-                // Orientation against the triangle's own winding normal (not
-                // the side-flipped `n`), so back faces are found too.
-                let winding = c.normal.as_ref().unwrap_or(n);
-                let inside = (0..3).all(|i| dot(&cross(&edges[i], &(&contact - p[i])), winding) >= zero);
-                if inside {
-                    return Some(Hit {
-                        t,
-                        point: contact + base,
-                        normal: n.clone(),
-                        feature: Feature::Face,
-                        triangle: index,
-                        started_overlapping: false,
-                    });
-                }
-            }
-        }
+    if !(plane_dist > reach)
+        && let Some(hit) = face_hit()
+    {
+        return Some(hit);
     }
 
     // Edges, then vertices: the earliest entry time within [0, 1]; on a tie
