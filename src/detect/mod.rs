@@ -128,6 +128,12 @@ pub struct Candidate<T: Real> {
     pub lo: Vec3<T>,
     /// Upper corner of its box.
     pub hi: Vec3<T>,
+    /// Its edges `b - a`, `c - b`, `a - c`, from the vertices as given: the
+    /// difference of two nearby floats is rounded relative to the edge's own
+    /// length, whereas vertices relative to a sweep's start carry errors of
+    /// order `u |vertex - base|`, which can exceed a small triangle far from
+    /// the start (a fast body) and destroy its shape.
+    pub edges: [Vec3<T>; 3],
     /// Shape factor `k = max |edge|^2 / |(b - a) x (c - a)|` (at least
     /// `2 / sqrt(3)`; large for a sliver, infinite when degenerate in this
     /// precision): the closest point of a triangle is computed with an error
@@ -141,14 +147,17 @@ impl<T: Real> Candidate<T> {
     #[must_use]
     pub fn new(index: u32, triangle: Triangle<T>, active: ActiveFeatures) -> Self {
         let raw = triangle.unnormalized_normal();
-        let normal = normalize(&raw);
+        let area2 = norm(&raw);
+        let has_area = area2 > T::zero() && area2.is_finite();
+        // As `normalize(&raw)`, without taking the norm twice.
+        let normal = has_area.then(|| raw.map(|x| x / &area2));
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
         let lo = Vec3::from_fn(|i, _| a[i].clone().min(b[i].clone()).min(c[i].clone()));
         let hi = Vec3::from_fn(|i, _| a[i].clone().max(b[i].clone()).max(c[i].clone()));
-        let longest = [b - a, c - b, a - c].iter().map(norm_squared).fold(T::zero(), |m, x| m.max(x));
-        let area2 = norm(&raw);
-        let shape = if area2 > T::zero() && area2.is_finite() { longest / area2 } else { T::c(f64::INFINITY) };
-        Candidate { index, triangle, active, normal, lo, hi, shape }
+        let edges = [b - a, c - b, a - c];
+        let longest = edges.iter().map(norm_squared).fold(T::zero(), |m, x| m.max(x));
+        let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
+        Candidate { index, triangle, active, normal, lo, hi, edges, shape }
     }
 
     /// The squared distance from `p` to this candidate's box (zero inside):

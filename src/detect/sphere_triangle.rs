@@ -271,13 +271,8 @@ pub(crate) fn sweep_robust_within<T: Real>(
     }
     let rel = c.triangle.relative_to(base);
     let p = [&rel.a, &rel.b, &rel.c];
-    // Edges from the given vertices, not from `rel`: the difference of two
-    // nearby floats is rounded relative to the edge's own length, whereas
-    // `rel`'s vertices carry errors of order `u |vertex - base|`, which can
-    // exceed a small triangle far from the start (a fast body) and destroy
-    // its shape.
-    let t = &c.triangle;
-    let edges = [&t.b - &t.a, &t.c - &t.b, &t.a - &t.c];
+    // Edges from the given vertices, not from `rel` (see `Candidate::edges`).
+    let edges = &c.edges;
     let mut normal = c.normal.clone();
     let nearest = (0..3)
         .min_by(|&i, &k| norm_squared(p[i]).partial_cmp(&norm_squared(p[k])).unwrap_or(std::cmp::Ordering::Equal))?;
