@@ -58,9 +58,7 @@
 use proptest::prelude::*;
 use rug::Float;
 use std::sync::Arc;
-use sweepslide::detect::{
-    Candidate, DetectOptions, Detection, Hit, Neighbourhood, earliest_hit, sweep_world, swept_box,
-};
+use sweepslide::detect::{Candidate, DetectOptions, Detection, Hit, Neighbourhood, Reach, earliest_hit, sweep_world};
 use sweepslide::geom::{Ellipsoid, Triangle, Vec3, vec3};
 use sweepslide::lab::metrics::triangle_distance_sq;
 use sweepslide::world::{TriangleMesh, World};
@@ -504,7 +502,7 @@ fn check_bvh<T: Real>(scene: &Scene, radii: [f64; 3]) -> Result<(), TestCaseErro
     let p = |a: &[f64; 3]| vec3::<T>(a[0], a[1], a[2]);
     let (pos, vel) = (p(&scene.base), p(&scene.vel));
     let opts = DetectOptions::default();
-    let (min, max) = swept_box(&body, &pos, &vel, &T::zero());
+    let (min, max) = Reach::of_sweep(&body, &pos, &vel).bounds(&body);
     let mut cands = Vec::new();
     world.candidates(&min, &max, &mut cands);
     let name = T::name();

@@ -151,9 +151,8 @@ impl<T: Real> Candidate<T> {
         let has_area = area2 > T::zero() && area2.is_finite();
         // As `normalize(&raw)`, without taking the norm twice.
         let normal = has_area.then(|| raw.map(|x| x / &area2));
+        let (lo, hi) = triangle.bounds();
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
-        let lo = Vec3::from_fn(|i, _| a[i].clone().min(b[i].clone()).min(c[i].clone()));
-        let hi = Vec3::from_fn(|i, _| a[i].clone().max(b[i].clone()).max(c[i].clone()));
         let edges = [b - a, c - b, a - c];
         let longest = edges.iter().map(norm_squared).fold(T::zero(), |m, x| m.max(x));
         let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
@@ -168,11 +167,7 @@ impl<T: Real> Candidate<T> {
     #[inline]
     #[must_use]
     pub fn box_distance_sq(&self, p: &Vec3<T>) -> T {
-        let zero = T::zero();
-        (0..3).fold(zero.clone(), |sum, i| {
-            let excess = (self.lo[i].clone() - &p[i]).max(p[i].clone() - &self.hi[i]).max(zero.clone());
-            sum + excess.clone() * excess
-        })
+        box_distance_sq(&self.lo, &self.hi, p)
     }
 
     /// A lone triangle (every edge and vertex active).
@@ -182,34 +177,82 @@ impl<T: Real> Candidate<T> {
     }
 }
 
-impl<T: Real> Neighbourhood<T> {
-    /// Every triangle of `world` whose bounds meet the world-space box
-    /// `[min, max]`, mapped to eSpace relative to `origin`.
+/// How far beyond the radii a gather reaches, in radii (eSpace units):
+/// room for paddings and small push-outs, far above any rounding of the
+/// box distances that decide what is gathered.
+pub const REACH_MARGIN: f64 = 1.05;
+
+/// The region a body can touch: every point within eSpace distance `radius`
+/// of the world point `centre` (an ellipsoid around it, with the body's
+/// proportions). A frame whose centre travels a path of eSpace length `L`
+/// from `c` touches only triangles within `L + 1` of `c`: slides project
+/// eSpace displacements, so they never lengthen the path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reach<T: Real> {
+    /// World-space centre.
+    pub centre: Vec3<T>,
+    /// eSpace radius.
+    pub radius: T,
+}
+
+impl<T: Real> Reach<T> {
+    /// The reach of a frame starting at `position` (world space) whose
+    /// displacements (world space, slid or not) are `moves`: radius
+    /// [`REACH_MARGIN`] plus the sum of their eSpace lengths.
     #[must_use]
-    pub fn gather(
-        world: &World<T>,
-        body: &Ellipsoid<T>,
-        origin: Vec3<T>,
-        min: &Vec3<T>,
-        max: &Vec3<T>,
-        scratch: &mut Vec<u32>,
-    ) -> Self {
-        world.candidates(min, max, scratch);
-        scratch.sort_unstable();
+    pub fn of_frame(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>]) -> Self {
+        let length = moves.iter().fold(T::zero(), |r, m| r + norm(&body.to_espace(m)));
+        Reach { centre: position.clone(), radius: T::c(REACH_MARGIN) + length }
+    }
+
+    /// The reach of one straight sweep from `position` by `velocity`: the
+    /// ball around its midpoint holding every point within
+    /// [`REACH_MARGIN`] of the segment.
+    #[must_use]
+    pub fn of_sweep(body: &Ellipsoid<T>, position: &Vec3<T>, velocity: &Vec3<T>) -> Self {
+        let half = velocity * T::c(0.5);
+        let radius = norm(&body.to_espace(&half)) + T::c(REACH_MARGIN);
+        Reach { centre: position + half, radius }
+    }
+
+    /// The world-space box around the region, `centre +- radius * radii`.
+    #[must_use]
+    pub fn bounds(&self, body: &Ellipsoid<T>) -> (Vec3<T>, Vec3<T>) {
+        let grow = body.radii() * self.radius.clone();
+        (&self.centre - &grow, &self.centre + grow)
+    }
+}
+
+impl<T: Real> Neighbourhood<T> {
+    /// Every triangle of `world` within `reach` (its box, in eSpace, within
+    /// the reach's radius of its centre), mapped to eSpace relative to
+    /// `origin`, by increasing index.
+    ///
+    /// Rounded: the box distance is computed from the rounded eSpace
+    /// vertices with an error of order `u` times their coordinates (relative
+    /// to `origin`), far below the [`REACH_MARGIN`] that every reach carries
+    /// beyond the unit radius; the world box handed to the BVH is rounded
+    /// outward by [`World::candidates`].
+    #[must_use]
+    pub fn gather(world: &World<T>, body: &Ellipsoid<T>, origin: Vec3<T>, reach: &Reach<T>) -> Self {
+        let (min, max) = reach.bounds(body);
         let to_e = |v: &Vec3<T>| body.to_espace(&(v - &origin));
+        let centre = to_e(&reach.centre);
+        let radius_sq = reach.radius.clone() * &reach.radius;
         // The BVH's leaves hold several triangles and its bounds are rounded
-        // outward; the exact test on each triangle's own box (comparisons
-        // are exact) keeps only those that meet the box.
-        let meets =
-            |w: &[&Vec3<T>; 3]| (0..3).all(|i| w.iter().any(|v| v[i] >= min[i]) && w.iter().any(|v| v[i] <= max[i]));
-        let mut triangles = Vec::with_capacity(scratch.len());
-        for &t in scratch.iter() {
+        // outward; the distance of each triangle's own eSpace box keeps only
+        // those within reach, and only they pay for a candidate's normal,
+        // edges and shape.
+        let mut triangles = Vec::with_capacity(16);
+        world.each_candidate(&min, &max, |t| {
             let w = world.corners(t);
-            if meets(&w) {
-                let triangle = Triangle::new(to_e(w[0]), to_e(w[1]), to_e(w[2]));
+            let triangle = Triangle::new(to_e(w[0]), to_e(w[1]), to_e(w[2]));
+            let (lo, hi) = triangle.bounds();
+            if box_distance_sq(&lo, &hi, &centre) <= radius_sq {
                 triangles.push(Candidate::new(t, triangle, world.mesh().active(t)));
             }
-        }
+        });
+        triangles.sort_unstable_by_key(|c| c.index);
         Neighbourhood { origin, triangles }
     }
 
@@ -262,6 +305,17 @@ pub fn earliest_hit<'a, T: Real + 'a>(
     best
 }
 
+/// The squared distance from `p` to the box `[lo, hi]` (zero inside); each
+/// axis's excess is one rounded subtraction.
+#[inline]
+fn box_distance_sq<T: Real>(lo: &Vec3<T>, hi: &Vec3<T>, p: &Vec3<T>) -> T {
+    let zero = T::zero();
+    (0..3).fold(zero.clone(), |sum, i| {
+        let excess = (lo[i].clone() - &p[i]).max(p[i].clone() - &hi[i]).max(zero.clone());
+        sum + excess.clone() * excess
+    })
+}
+
 /// Sweeps `body` from `position` by `velocity` (world space) through the
 /// whole `world` and returns the earliest hit, in world space: `point` on
 /// the triangle, `normal` the unit surface normal there (the eSpace normal
@@ -283,8 +337,8 @@ pub fn sweep_world<T: Real>(
         Detection::Robust => position.clone(),
         Detection::Fauerby => Vec3::zeros(),
     };
-    let (min, max) = swept_box(body, position, velocity, &T::zero());
-    let hood = Neighbourhood::gather(world, body, origin.clone(), &min, &max, &mut Vec::new());
+    let reach = Reach::of_sweep(body, position, velocity);
+    let hood = Neighbourhood::gather(world, body, origin.clone(), &reach);
     let base = body.to_espace(&(position - &origin));
     let vel = body.to_espace(velocity);
     Ok(hood.earliest_hit(detection, &base, &vel, opts).map(|h| Hit {
@@ -292,22 +346,6 @@ pub fn sweep_world<T: Real>(
         normal: normalize(&Vec3::from_fn(|i, _| h.normal[i].clone() / &body.radii()[i])).unwrap_or(h.normal),
         ..h
     }))
-}
-
-/// The world-space box that holds `body` everywhere on the segment from
-/// `position` to `position + velocity`, grown by `margin` times the radii.
-#[must_use]
-pub fn swept_box<T: Real>(
-    body: &Ellipsoid<T>,
-    position: &Vec3<T>,
-    velocity: &Vec3<T>,
-    margin: &T,
-) -> (Vec3<T>, Vec3<T>) {
-    let end = position + velocity;
-    let grow = body.radii() * (T::one() + margin);
-    let min = Vec3::from_fn(|i, _| position[i].clone().min(end[i].clone()) - &grow[i]);
-    let max = Vec3::from_fn(|i, _| position[i].clone().max(end[i].clone()) + &grow[i]);
-    (min, max)
 }
 
 /// [`Error::NonFinite`] if a coordinate of `v` is NaN or infinite.

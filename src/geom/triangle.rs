@@ -52,6 +52,16 @@ impl<T: Real> Triangle<T> {
         cross(&(&self.b - &self.a), &(&self.c - &self.a))
     }
 
+    /// Its box: the lower and upper corners (exact: comparisons only).
+    #[inline]
+    #[must_use]
+    pub fn bounds(&self) -> (Vec3<T>, Vec3<T>) {
+        let (a, b, c) = (&self.a, &self.b, &self.c);
+        let lo = Vec3::from_fn(|i, _| a[i].clone().min(b[i].clone()).min(c[i].clone()));
+        let hi = Vec3::from_fn(|i, _| a[i].clone().max(b[i].clone()).max(c[i].clone()));
+        (lo, hi)
+    }
+
     /// The triangle with `origin` subtracted from every vertex (so that
     /// `origin` becomes the new origin of coordinates).
     #[inline]

@@ -23,7 +23,7 @@ pub use fauerby::FauerbyOptions;
 pub use linahan::LinahanOptions;
 pub use robust::RobustOptions;
 
-use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, check_finite};
+use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, Reach, check_finite};
 use crate::geom::{Ellipsoid, Vec3, norm};
 use crate::world::World;
 use crate::{Error, Real};
@@ -168,9 +168,6 @@ pub(crate) fn unguarded_normalize<T: Real>(v: &Vec3<T>) -> Vec3<T> {
     v / norm(v)
 }
 
-/// How far beyond the radii a frame gathers candidates, in radii.
-pub(crate) const REACH_MARGIN: f64 = 1.05;
-
 /// One frame's shared state: the candidate triangles in eSpace and the
 /// trace being written.
 pub(crate) struct Frame<'w, T: Real> {
@@ -199,8 +196,8 @@ impl<T: Real> Frame<'_, T> {
     /// push-out moved the body beyond the gathered box's margin).
     pub fn regather(&mut self, p: &Vec3<T>) {
         let at = self.body.from_espace(p) + &self.hood.origin;
-        let (min, max) = reach_box(self.body, &at, &[&self.moves[0], &self.moves[1]]);
-        self.hood = Neighbourhood::gather(self.world, self.body, self.hood.origin.clone(), &min, &max, &mut Vec::new());
+        let reach = Reach::of_frame(self.body, &at, &[&self.moves[0], &self.moves[1]]);
+        self.hood = Neighbourhood::gather(self.world, self.body, self.hood.origin.clone(), &reach);
     }
 
     /// Records a contact.
@@ -238,9 +235,8 @@ pub fn move_body<T: Real>(
         Response::Robust => position.clone(),
         Response::Fauerby | Response::Linahan => Vec3::zeros(),
     };
-    let (min, max) = reach_box(body, position, &[velocity, gravity]);
-    let mut scratch = Vec::new();
-    let hood = Neighbourhood::gather(world, body, origin.clone(), &min, &max, &mut scratch);
+    let reach = Reach::of_frame(body, position, &[velocity, gravity]);
+    let hood = Neighbourhood::gather(world, body, origin.clone(), &reach);
     let trace = Trace { iterations: 0, contacts: Vec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
     let moves = [velocity.clone(), gravity.clone()];
     let start_magnitude = body.to_espace(position).iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max);
@@ -272,15 +268,4 @@ pub fn move_body<T: Real>(
     }
     let position = if p == start { position.clone() } else { body.from_espace(&p) + &origin };
     Ok(Move { position, trace: frame.trace })
-}
-
-/// The world-space box that holds the body anywhere it can reach this frame:
-/// a slide may turn the displacement sideways, so the box extends the total
-/// length of all displacements in every direction from `position`, grown by
-/// 5% of the radii for paddings and push-outs (the robust response gathers
-/// again if a push-out takes it further).
-fn reach_box<T: Real>(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>]) -> (Vec3<T>, Vec3<T>) {
-    let reach = moves.iter().fold(T::zero(), |r, m| r + norm(m));
-    let grow = body.radii() * T::c(REACH_MARGIN) + Vec3::repeat(reach);
-    (position - &grow, position + grow)
 }

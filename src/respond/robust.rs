@@ -294,7 +294,7 @@ pub(crate) fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opt
         frame.trace.depenetration += push.to_f64();
         p += dir * push;
     }
-    if frame.trace.depenetration > super::REACH_MARGIN - 1.0 {
+    if frame.trace.depenetration > crate::detect::REACH_MARGIN - 1.0 {
         frame.regather(&p);
     }
     p

@@ -193,8 +193,8 @@ impl Bvh {
         Some(start + i)
     }
 
-    /// Appends to `out` every triangle whose box overlaps `query`.
-    pub fn query(&self, query: &Aabb, out: &mut Vec<u32>) {
+    /// Calls `visit` with every triangle whose box overlaps `query`.
+    pub fn query(&self, query: &Aabb, mut visit: impl FnMut(u32)) {
         if self.nodes.is_empty() {
             return;
         }
@@ -211,7 +211,7 @@ impl Bvh {
             let node = &self.nodes[id as usize];
             if node.count > 0 {
                 let first = node.index as usize;
-                out.extend_from_slice(&self.order[first..first + node.count as usize]);
+                self.order[first..first + node.count as usize].iter().for_each(|&t| visit(t));
             } else {
                 // Left child directly follows its parent; the right one is
                 // pushed first so the left is visited first, as before.

@@ -284,8 +284,14 @@ impl<T: Real> World<T> {
     /// outward into `f64` and widened by the conversion slack.
     pub fn candidates(&self, min: &Vec3<T>, max: &Vec3<T>, out: &mut Vec<u32>) {
         out.clear();
+        self.each_candidate(min, max, |t| out.push(t));
+    }
+
+    /// Calls `visit` with each triangle [`World::candidates`] would return,
+    /// in the same order, without collecting them.
+    pub fn each_candidate(&self, min: &Vec3<T>, max: &Vec3<T>, visit: impl FnMut(u32)) {
         let lo = Vector3::from_fn(|i, _| (min[i].to_f64() - self.slack).next_down());
         let hi = Vector3::from_fn(|i, _| (max[i].to_f64() + self.slack).next_up());
-        self.mesh.bvh.query(&Aabb { min: lo, max: hi }, out);
+        self.mesh.bvh.query(&Aabb { min: lo, max: hi }, visit);
     }
 }

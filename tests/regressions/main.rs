@@ -7,6 +7,7 @@ mod fauerby_detection;
 mod fuzz_found;
 mod lab_found;
 mod respond_back_face;
+mod respond_ellipsoid_reach;
 mod respond_embedded;
 mod respond_far_origin;
 mod respond_parallel_planes;
