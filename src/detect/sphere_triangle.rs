@@ -398,11 +398,24 @@ pub(crate) fn sweep_robust_within<T: Real>(
 
     // Edges, then vertices: the earliest entry time within [0, 1]; on a tie
     // the feature found first stays.
+    //
+    // The unit ball around a vertex lies inside the unit cylinder around
+    // either edge's line, so a body that starts outside that cylinder
+    // reaches the vertex no earlier than the cylinder: a vertex is solved
+    // for only if neither of its edges rules it out. An edge rules out both
+    // of its vertices when its cylinder is never entered, or entered too
+    // late to win, or entered over the edge itself (the edge is hit first);
+    // entered beyond one end, it rules out the other end (to reach that one
+    // the centre would cross the slab of the near end inside the cylinder,
+    // touching the near end first). What this skips is decided on rounded
+    // quantities, but only where the vertex would be reached within a
+    // rounding of the edge's own entry time.
     let mut best: Option<Touch<T>> = None;
     let better = |t: &T, best: &Option<Touch<T>>| match best {
         None => wins(t),
         Some(b) => *t < b.t,
     };
+    let mut vertex_open = [true; 3];
     for i in 0..3 {
         let (a, e) = (p[i], &edges[i]);
         let e2 = norm_squared(e);
@@ -412,25 +425,29 @@ pub(crate) fn sweep_robust_within<T: Real>(
         if !(c > zero) {
             continue;
         }
+        let ends = [i, (i + 1) % 3];
         // disc = (m.k)^2 - |m|^2 c = |e|^2 (|m|^2 - (m.a)^2) by Lagrange's
         // identity, since m x k = e (m . a): no fourth powers cancel.
         let det = dot(&m, a);
         let m2 = norm_squared(&m);
         let disc = e2.clone() * (m2 - det.clone() * &det);
-        let Some(t) = stable_entry_root(&-dot(&m, &k), &c, &disc) else {
+        let Some(t) = stable_entry_root(&-dot(&m, &k), &c, &disc).filter(|t| better(t, &best)) else {
+            ends.iter().for_each(|&v| vertex_open[v] = false);
             continue;
         };
-        if !better(&t, &best) {
-            continue;
-        }
         let centre = vel * t.clone();
         let f = dot(&(&centre - a), e) / &e2;
-        if f >= zero && f <= one {
+        if f < zero {
+            vertex_open[ends[1]] = false;
+        } else if f > one {
+            vertex_open[ends[0]] = false;
+        } else {
+            ends.iter().for_each(|&v| vertex_open[v] = false);
             best = Some(Touch { t, point: a + e * f, centre, feature: Feature::Edge(i as u8) });
         }
     }
     let v2 = norm_squared(vel);
-    for (i, v) in p.iter().enumerate() {
+    for (i, v) in p.iter().enumerate().filter(|(i, _)| vertex_open[*i]) {
         let c = norm_squared(*v) - &one;
         if !(c > zero) {
             continue;
