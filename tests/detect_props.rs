@@ -502,9 +502,9 @@ fn check_bvh<T: Real>(scene: &Scene, radii: [f64; 3]) -> Result<(), TestCaseErro
     let p = |a: &[f64; 3]| vec3::<T>(a[0], a[1], a[2]);
     let (pos, vel) = (p(&scene.base), p(&scene.vel));
     let opts = DetectOptions::default();
-    let (min, max) = Reach::of_sweep(&body, &pos, &vel).bounds(&body);
+    let reach = Reach::of_sweep(&body, &pos, &vel);
     let mut cands = Vec::new();
-    world.candidates(&min, &max, &mut cands);
+    world.candidates(&reach.min, &reach.max, &mut cands);
     let name = T::name();
     for d in [Detection::Fauerby, Detection::Robust] {
         let origin = match d {

@@ -182,16 +182,25 @@ impl<T: Real> Candidate<T> {
 /// box distances that decide what is gathered.
 pub const REACH_MARGIN: f64 = 1.05;
 
-/// The region a body can touch: every point within eSpace distance `radius`
-/// of the world point `centre` (an ellipsoid around it, with the body's
-/// proportions). A frame whose centre travels a path of eSpace length `L`
-/// from `c` touches only triangles within `L + 1` of `c`: slides project
-/// eSpace displacements, so they never lengthen the path.
+/// The region a body can touch: the points of the world box `[min, max]`
+/// within eSpace distance `radius` of the world point `centre` (an
+/// ellipsoid around it, with the body's proportions).
+///
+/// A frame whose centre travels a path of eSpace length `L` from `c`
+/// touches only triangles within `L + 1` of `c`: slides project eSpace
+/// displacements, so they never lengthen the path (its box is the ball's).
+/// A straight sweep touches only triangles within 1 of its segment: the
+/// segment's box grown by the radii, intersected with the ball around its
+/// midpoint (a long sweep's box stays narrow across the motion).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Reach<T: Real> {
-    /// World-space centre.
+    /// Lower corner of the world box.
+    pub min: Vec3<T>,
+    /// Upper corner of the world box.
+    pub max: Vec3<T>,
+    /// World-space centre of the ball.
     pub centre: Vec3<T>,
-    /// eSpace radius.
+    /// eSpace radius of the ball.
     pub radius: T,
 }
 
@@ -202,31 +211,31 @@ impl<T: Real> Reach<T> {
     #[must_use]
     pub fn of_frame(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>]) -> Self {
         let length = moves.iter().fold(T::zero(), |r, m| r + norm(&body.to_espace(m)));
-        Reach { centre: position.clone(), radius: T::c(REACH_MARGIN) + length }
+        let radius = T::c(REACH_MARGIN) + length;
+        let grow = body.radii() * radius.clone();
+        Reach { min: position - &grow, max: position + grow, centre: position.clone(), radius }
     }
 
-    /// The reach of one straight sweep from `position` by `velocity`: the
-    /// ball around its midpoint holding every point within
-    /// [`REACH_MARGIN`] of the segment.
+    /// The reach of one straight sweep from `position` by `velocity`: every
+    /// point within [`REACH_MARGIN`] (eSpace) of the segment.
     #[must_use]
     pub fn of_sweep(body: &Ellipsoid<T>, position: &Vec3<T>, velocity: &Vec3<T>) -> Self {
+        let end = position + velocity;
+        let grow = body.radii() * T::c(REACH_MARGIN);
+        let min = Vec3::from_fn(|i, _| position[i].clone().min(end[i].clone()) - &grow[i]);
+        let max = Vec3::from_fn(|i, _| position[i].clone().max(end[i].clone()) + &grow[i]);
         let half = velocity * T::c(0.5);
         let radius = norm(&body.to_espace(&half)) + T::c(REACH_MARGIN);
-        Reach { centre: position + half, radius }
-    }
-
-    /// The world-space box around the region, `centre +- radius * radii`.
-    #[must_use]
-    pub fn bounds(&self, body: &Ellipsoid<T>) -> (Vec3<T>, Vec3<T>) {
-        let grow = body.radii() * self.radius.clone();
-        (&self.centre - &grow, &self.centre + grow)
+        Reach { min, max, centre: position + half, radius }
     }
 }
 
 impl<T: Real> Neighbourhood<T> {
-    /// Every triangle of `world` within `reach` (its box, in eSpace, within
-    /// the reach's radius of its centre), mapped to eSpace relative to
-    /// `origin`, by increasing index.
+    /// The triangles of `world` that may lie within `reach`, mapped to
+    /// eSpace relative to `origin`, by increasing index: those of the BVH's
+    /// leaves that meet the reach's box whose own eSpace box lies within the
+    /// reach's radius of its centre. Every triangle within reach is among
+    /// them; a few outside the box may be too (the sweeps reject them).
     ///
     /// Rounded: the box distance is computed from the rounded eSpace
     /// vertices with an error of order `u` times their coordinates (relative
@@ -235,7 +244,6 @@ impl<T: Real> Neighbourhood<T> {
     /// outward by [`World::candidates`].
     #[must_use]
     pub fn gather(world: &World<T>, body: &Ellipsoid<T>, origin: Vec3<T>, reach: &Reach<T>) -> Self {
-        let (min, max) = reach.bounds(body);
         let to_e = |v: &Vec3<T>| body.to_espace(&(v - &origin));
         let centre = to_e(&reach.centre);
         let radius_sq = reach.radius.clone() * &reach.radius;
@@ -244,7 +252,7 @@ impl<T: Real> Neighbourhood<T> {
         // those within reach, and only they pay for a candidate's normal,
         // edges and shape.
         let mut triangles = Vec::with_capacity(16);
-        world.each_candidate(&min, &max, |t| {
+        world.each_candidate(&reach.min, &reach.max, Some((&reach.centre, body.radii(), &reach.radius)), |t| {
             let w = world.corners(t);
             let triangle = Triangle::new(to_e(w[0]), to_e(w[1]), to_e(w[2]));
             let (lo, hi) = triangle.bounds();

@@ -259,13 +259,21 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let wins = |t: &T| limit.map_or(*t <= one, |l| t < l);
     let reach = reach::<T>();
     // Quick rejection from the precomputed normal and vertex a alone: the
-    // centre stays farther than `reach` from the plane on one side for the
-    // whole sweep (the `1e-3` margin dwarfs this estimate's rounding).
+    // centre stays farther than 1 from the plane on one side for the whole
+    // sweep. The margin covers this estimate's rounding (the unit normal's
+    // direction is off by a few `u k`, `k` the shape factor, and each dot
+    // product by a few `u` times its terms) and the touching tolerance, so
+    // nothing rejected here could touch; it is tight enough that a body
+    // resting on a surface (a padding of a few hundred `u` away) and moving
+    // along or away from it rejects the surface's triangles here.
+    let from_a = base - &c.triangle.a;
+    let scale = max_abs(&from_a, one.clone()) + &swept.speed;
+    let clear = one.clone() + T::c((opts.touch_ulps + 16.0) * T::unit_roundoff()) * &c.shape * scale;
     if let Some(n) = &c.normal {
-        let d0 = dot(n, &(base - &c.triangle.a));
+        let d0 = dot(n, &from_a);
         let d1 = d0.clone() + dot(n, vel);
         let (lo, hi) = if d0 < d1 { (d0, d1) } else { (d1, d0) };
-        if lo > reach || hi < -reach.clone() || (!opts.two_sided && hi < zero) {
+        if lo > clear || hi < -clear.clone() || (!opts.two_sided && hi < zero) {
             return None;
         }
     }
@@ -291,10 +299,10 @@ pub(crate) fn sweep_robust_within<T: Real>(
         // Quick rejection: the sphere stays clear of the whole plane, or
         // reaches it too late to beat `limit`.
         let nv = dot(n, vel);
-        if plane_dist.clone() + nv.clone().min(zero.clone()) > reach {
+        if plane_dist.clone() + nv.clone().min(zero.clone()) > clear {
             return None;
         }
-        if plane_dist > reach && nv < zero && !wins(&((plane_dist.clone() - &reach) / -nv)) {
+        if plane_dist > clear && nv < zero && !wins(&((plane_dist.clone() - &clear) / -nv)) {
             return None;
         }
     }
@@ -328,7 +336,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     };
     // Clear of the plane by more than the margin, the body cannot be
     // touching anything now: a face hit needs no closest point.
-    if plane_dist > reach
+    if plane_dist > clear
         && let Some(hit) = face_hit()
     {
         return Some(hit);
@@ -390,7 +398,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
         }
     }
 
-    if !(plane_dist > reach)
+    if !(plane_dist > clear)
         && let Some(hit) = face_hit()
     {
         return Some(hit);

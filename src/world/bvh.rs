@@ -1,9 +1,12 @@
 //! A bounding-volume hierarchy over triangle bounds, in `f64`.
 //!
-//! Built top-down by binned surface-area heuristic, stored as a flat array
-//! (left child follows its parent; the right child's index is stored). A
-//! query returns every triangle whose box overlaps the query box (closed
-//! intervals), in a deterministic order.
+//! Built top-down by binned surface-area heuristic in `f64`, then stored for
+//! queries as a flat array of inner nodes that each hold both children's
+//! boxes, in `f32` rounded outward, and references (32 bytes a child, one
+//! 64-byte cache line a node): a query reads one line per node it enters and
+//! tests both children from it. A query returns every triangle whose box
+//! overlaps the query box (closed intervals; the query box is rounded
+//! outward too, so no overlap is lost), in a deterministic order.
 
 use nalgebra::Vector3;
 
@@ -61,6 +64,7 @@ impl Aabb {
     }
 }
 
+/// A node of the tree while it is built.
 #[derive(Clone, Debug)]
 struct Node {
     bounds: Aabb,
@@ -70,10 +74,83 @@ struct Node {
     count: u32,
 }
 
-/// The hierarchy: nodes plus the triangle order its leaves index into.
+/// A child as its parent stores it: its box in `f32`, rounded outward, and
+/// either an inner node's index (`count == 0`) or a leaf's triangles
+/// (`order[index..index + count]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Child {
+    min: [f32; 3],
+    max: [f32; 3],
+    index: u32,
+    count: u32,
+}
+
+impl Child {
+    /// The box rounded outward to `f32` (infinities where it exceeds the
+    /// `f32` range), with the given reference.
+    fn new(bounds: &Aabb, index: u32, count: u32) -> Self {
+        let down = |x: f64| {
+            let f = x as f32;
+            if f64::from(f) > x { f.next_down() } else { f }
+        };
+        let up = |x: f64| {
+            let f = x as f32;
+            if f64::from(f) < x { f.next_up() } else { f }
+        };
+        Child { min: [0, 1, 2].map(|i| down(bounds.min[i])), max: [0, 1, 2].map(|i| up(bounds.max[i])), index, count }
+    }
+
+    /// `true` when the two closed boxes share a point.
+    #[inline]
+    fn overlaps(&self, other: &Child) -> bool {
+        // Every comparison evaluated (no branch per axis).
+        (0..3).fold(true, |all, i| all & (self.min[i] <= other.max[i]) & (other.min[i] <= self.max[i]))
+    }
+}
+
+/// An ellipsoidal ball for [`Bvh::query`]: the points `q` with
+/// `sum_i ((q_i - centre_i) scale_i)^2 <= radius^2` (in eSpace terms: the
+/// centre, the inverse radii and the eSpace radius).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ball {
+    /// Centre.
+    pub centre: Vector3<f64>,
+    /// Per-axis scale (inverse radii).
+    pub scale: Vector3<f64>,
+    /// Radius, in scaled units.
+    pub radius: f64,
+}
+
+impl Ball {
+    /// Whether a node's box comes within the ball. Conservative: the scaled
+    /// distance is computed in `f64` (relative error a few `u`) and compared
+    /// with the radius grown by a relative `1e-9`; callers widen `radius`
+    /// for any rounding of their own inputs.
+    #[inline]
+    fn meets(&self, c: &Child) -> bool {
+        let distance_sq = (0..3).fold(0.0, |sum, i| {
+            let excess = (f64::from(c.min[i]) - self.centre[i]).max(self.centre[i] - f64::from(c.max[i])).max(0.0);
+            let x = excess * self.scale[i];
+            sum + x * x
+        });
+        let r = self.radius * (1.0 + 1e-9);
+        distance_sq <= r * r
+    }
+}
+
+/// An inner node: both children, one cache line.
+#[derive(Clone, Copy, Debug)]
+#[repr(align(64))]
+struct Inner {
+    children: [Child; 2],
+}
+
+/// The hierarchy: the root, the inner nodes, and the triangle order its
+/// leaves index into.
 #[derive(Clone, Debug)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    root: Child,
+    inner: Vec<Inner>,
     order: Vec<u32>,
 }
 
@@ -89,15 +166,83 @@ impl Bvh {
     /// index).
     #[must_use]
     pub fn build(boxes: &[Aabb]) -> Self {
-        let mut bvh = Bvh {
+        let mut tree = Tree {
             nodes: Vec::with_capacity(2 * boxes.len() / LEAF_SIZE + 1),
             order: (0..boxes.len() as u32).collect(),
         };
-        if !boxes.is_empty() {
-            let centres: Vec<Vector3<f64>> = boxes.iter().map(Aabb::centre).collect();
-            bvh.build_node(boxes, &centres, 0, boxes.len(), 0);
+        if boxes.is_empty() {
+            return Bvh { root: Child::new(&Aabb::empty(), 0, 0), inner: Vec::new(), order: tree.order };
         }
-        bvh
+        let centres: Vec<Vector3<f64>> = boxes.iter().map(Aabb::centre).collect();
+        tree.build_node(boxes, &centres, 0, boxes.len(), 0);
+        let mut inner = Vec::with_capacity(tree.nodes.len() / 2);
+        let root = tree.compile(0, &mut inner);
+        Bvh { root, inner, order: tree.order }
+    }
+
+    /// Calls `visit` with every triangle whose box overlaps `query`, or,
+    /// given a `ball`, only those in a leaf whose box also meets the ball
+    /// (tested at the leaves only: on the inner nodes the box test alone
+    /// is cheaper than what the ball would prune).
+    pub fn query(&self, query: &Aabb, ball: Option<&Ball>, mut visit: impl FnMut(u32)) {
+        let query = Child::new(query, 0, 0);
+        if !self.root.overlaps(&query) {
+            return;
+        }
+        // Depth first, left to right (leaves come out in the order of
+        // `order`, which keeps nearby triangles' indices mostly sorted);
+        // only children that overlap go on the stack.
+        let mut stack = [&self.root; MAX_DEPTH + 2];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let child = stack[top];
+            if child.count > 0 {
+                if ball.is_some_and(|b| !b.meets(child)) {
+                    continue;
+                }
+                let first = child.index as usize;
+                self.order[first..first + child.count as usize].iter().for_each(|&t| visit(t));
+                continue;
+            }
+            for next in self.inner[child.index as usize].children.iter().rev() {
+                if next.overlaps(&query) {
+                    stack[top] = next;
+                    top += 1;
+                }
+            }
+        }
+    }
+
+    /// Number of nodes, leaves included (for statistics).
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        2 * self.inner.len() + 1
+    }
+}
+
+/// The tree while it is built: nodes in depth-first order (the left child
+/// follows its parent; the right child's index is stored).
+struct Tree {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+impl Tree {
+    /// Stores node `id` and its subtree for queries: inner nodes appended
+    /// to `inner`, the node itself returned as its parent's child.
+    fn compile(&self, id: usize, inner: &mut Vec<Inner>) -> Child {
+        let node = &self.nodes[id];
+        if node.count > 0 {
+            return Child::new(&node.bounds, node.index, node.count);
+        }
+        let slot = inner.len();
+        let placeholder = Child::new(&Aabb::empty(), 0, 0);
+        inner.push(Inner { children: [placeholder; 2] });
+        let left = self.compile(id + 1, inner);
+        let right = self.compile(node.index as usize, inner);
+        inner[slot].children = [left, right];
+        Child::new(&node.bounds, slot as u32, 0)
     }
 
     fn build_node(
@@ -191,43 +336,5 @@ impl Bvh {
             }
         }
         Some(start + i)
-    }
-
-    /// Calls `visit` with every triangle whose box overlaps `query`.
-    pub fn query(&self, query: &Aabb, mut visit: impl FnMut(u32)) {
-        if self.nodes.is_empty() {
-            return;
-        }
-        if !self.nodes[0].bounds.overlaps(query) {
-            return;
-        }
-        // Only nodes that overlap the query are pushed: each child is tested
-        // before it goes on the stack.
-        let mut stack = [0u32; MAX_DEPTH + 2];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let id = stack[top];
-            let node = &self.nodes[id as usize];
-            if node.count > 0 {
-                let first = node.index as usize;
-                self.order[first..first + node.count as usize].iter().for_each(|&t| visit(t));
-            } else {
-                // Left child directly follows its parent; the right one is
-                // pushed first so the left is visited first, as before.
-                for child in [node.index, id + 1] {
-                    if self.nodes[child as usize].bounds.overlaps(query) {
-                        stack[top] = child;
-                        top += 1;
-                    }
-                }
-            }
-        }
-    }
-
-    /// Number of nodes (for statistics).
-    #[must_use]
-    pub fn node_count(&self) -> usize {
-        self.nodes.len()
     }
 }

@@ -1,7 +1,7 @@
 //! The validated mesh (`f64`) and its conversion into a backend.
 
 use super::obj::parse_obj;
-use super::{Aabb, ActiveFeatures, Adjacency, Bvh};
+use super::{Aabb, ActiveFeatures, Adjacency, Ball, Bvh};
 use crate::geom::{Triangle, Vec3, from_f64};
 use crate::{Error, Real};
 use nalgebra::Vector3;
@@ -284,14 +284,30 @@ impl<T: Real> World<T> {
     /// outward into `f64` and widened by the conversion slack.
     pub fn candidates(&self, min: &Vec3<T>, max: &Vec3<T>, out: &mut Vec<u32>) {
         out.clear();
-        self.each_candidate(min, max, |t| out.push(t));
+        self.each_candidate(min, max, None, |t| out.push(t));
     }
 
     /// Calls `visit` with each triangle [`World::candidates`] would return,
-    /// in the same order, without collecting them.
-    pub fn each_candidate(&self, min: &Vec3<T>, max: &Vec3<T>, visit: impl FnMut(u32)) {
+    /// in the same order, without collecting them; given a `ball` (centre,
+    /// per-axis radii, and a radius in units of those radii: an eSpace ball),
+    /// only those of the BVH's leaves that also come within it. Never misses
+    /// a triangle that meets both: the ball is widened by the conversion
+    /// slack and the rounding of its centre to `f64`.
+    pub fn each_candidate(
+        &self,
+        min: &Vec3<T>,
+        max: &Vec3<T>,
+        ball: Option<(&Vec3<T>, &Vec3<T>, &T)>,
+        visit: impl FnMut(u32),
+    ) {
         let lo = Vector3::from_fn(|i, _| (min[i].to_f64() - self.slack).next_down());
         let hi = Vector3::from_fn(|i, _| (max[i].to_f64() + self.slack).next_up());
-        self.mesh.bvh.query(&Aabb { min: lo, max: hi }, visit);
+        let ball = ball.map(|(centre, radii, radius)| {
+            let centre = Vector3::from_fn(|i, _| centre[i].to_f64());
+            let scale = Vector3::from_fn(|i, _| 1.0 / radii[i].to_f64());
+            let off = self.slack + centre.amax() * f64::EPSILON;
+            Ball { centre, scale, radius: radius.to_f64() + off * scale.max() }
+        });
+        self.mesh.bvh.query(&Aabb { min: lo, max: hi }, ball.as_ref(), visit);
     }
 }

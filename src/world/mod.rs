@@ -13,6 +13,6 @@ mod mesh;
 mod obj;
 
 pub use adjacency::{ActiveFeatures, Adjacency};
-pub use bvh::{Aabb, Bvh};
+pub use bvh::{Aabb, Ball, Bvh};
 pub use mesh::{INTERNAL_EDGE_DEGREES, TriangleMesh, World};
 pub use obj::parse_obj;
