@@ -445,7 +445,10 @@ fn clear_start(mesh: &TriangleMesh, r: f64, rng: &mut Rng) -> Result<[f64; 3], E
 impl Scene {
     /// A scene made of an OBJ file, with defaults scaled to its size: a
     /// sphere of 2% of the bounding-box diagonal dropped from above the
-    /// middle and steered by a random walk with gravity.
+    /// middle and steered by a random walk with gravity. The push is 0.1% of
+    /// the diagonal a frame (a third of the diagonal in 300 frames), slow
+    /// enough that the body lands on the model and spends most frames on it
+    /// rather than walking off its edge in the first frames.
     ///
     /// # Errors
     /// As [`TriangleMesh::from_obj_file`].
@@ -462,7 +465,7 @@ impl Scene {
             mesh: Arc::new(mesh),
             start: [centre.x, b.max.y + 2.0 * r, centre.z],
             radii: [r; 3],
-            velocity: [0.004 * diag, 0.0, 0.0015 * diag],
+            velocity: [0.001 * diag, 0.0, 0.0004 * diag],
             gravity: [0.0, -0.004 * diag, 0.0],
             frames: 300,
             motion: Motion::RandomWalk { turn_deg: 8.0 },
