@@ -342,16 +342,19 @@ pub(crate) fn sweep_robust_within<T: Real>(
         return Some(hit);
     }
 
-    // The closest point now. The centre moves at most `|vel|`, so a
-    // triangle farther than `1 + |vel|` cannot be touched (the margin covers
-    // the closest point's rounding, of order `u * far * k` with `k` the
-    // shape factor: Ericson's barycentric closest point drifts along a
-    // sliver): this rejects most near misses before the edge and vertex
-    // quadratics.
+    // The closest point now. The centre moves at most `|vel|`, and at most
+    // `l |vel|` before the best time `l` so far, so a triangle farther than
+    // `1 + l |vel|` cannot win (the margin covers the closest point's
+    // rounding, of order `u * far * k` with `k` the shape factor: Ericson's
+    // barycentric closest point drifts along a sliver): this rejects most
+    // near misses before the edge and vertex quadratics.
     let origin = Vec3::zeros();
     let (closest, feature) = closest_point_on_triangle(&origin, &rel);
     let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape;
-    let gap_bound = (one.clone() + &swept.speed) * &reach + &slack;
+    // Before `limit` (an earlier triangle's hit) the centre has moved at
+    // most `limit |vel|`.
+    let travel = limit.map_or_else(|| swept.speed.clone(), |l| l.clone().min(one.clone()) * &swept.speed);
+    let gap_bound = (one.clone() + travel) * &reach + &slack;
     let closest_sq = norm_squared(&closest);
     if closest_sq > gap_bound.clone() * gap_bound {
         return None;
