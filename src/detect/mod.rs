@@ -240,8 +240,8 @@ impl<T: Real> Neighbourhood<T> {
     /// Rounded: the box distance is computed from the rounded eSpace
     /// vertices with an error of order `u` times their coordinates (relative
     /// to `origin`), far below the [`REACH_MARGIN`] that every reach carries
-    /// beyond the unit radius; the world box handed to the BVH is rounded
-    /// outward by [`World::candidates`].
+    /// beyond the unit radius; the world box and ball handed to the BVH are
+    /// widened for the conversion to `f64` by [`World::each_candidate`].
     #[must_use]
     pub fn gather(world: &World<T>, body: &Ellipsoid<T>, origin: Vec3<T>, reach: &Reach<T>) -> Self {
         let to_e = |v: &Vec3<T>| body.to_espace(&(v - &origin));
