@@ -251,7 +251,7 @@ impl<T: Real> Neighbourhood<T> {
         // outward; the distance of each triangle's own eSpace box keeps only
         // those within reach, and only they pay for a candidate's normal,
         // edges and shape.
-        let mut triangles = Vec::new();
+        let mut triangles = Vec::with_capacity(8);
         world.each_candidate(&reach.min, &reach.max, Some((&reach.centre, body.radii(), &reach.radius)), |t| {
             let w = world.corners(t);
             let triangle = Triangle::new(to_e(w[0]), to_e(w[1]), to_e(w[2]));

@@ -189,27 +189,38 @@ impl Bvh {
         if !self.root.overlaps(&query) {
             return;
         }
-        // Depth first, left to right (leaves come out in the order of
-        // `order`, which keeps nearby triangles' indices mostly sorted);
-        // only children that overlap go on the stack.
-        let mut stack = [&self.root; MAX_DEPTH + 2];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let child = stack[top];
-            if child.count > 0 {
-                if ball.is_some_and(|b| !b.meets(child)) {
-                    continue;
-                }
+        let leaf = |child: &Child, visit: &mut dyn FnMut(u32)| {
+            if ball.is_none_or(|b| b.meets(child)) {
                 let first = child.index as usize;
                 self.order[first..first + child.count as usize].iter().for_each(|&t| visit(t));
-                continue;
             }
-            for next in self.inner[child.index as usize].children.iter().rev() {
-                if next.overlaps(&query) {
-                    stack[top] = next;
-                    top += 1;
+        };
+        if self.root.count > 0 {
+            leaf(&self.root, &mut visit);
+            return;
+        }
+        // Depth first, left to right (leaves come out in the order of
+        // `order`, which keeps nearby triangles' indices mostly sorted);
+        // only children that overlap go on the stack, as `2 node + side`.
+        let mut stack = [0u32; 2 * (MAX_DEPTH + 2)];
+        let mut top = 0;
+        let push_children = |node: u32, stack: &mut [u32], top: &mut usize| {
+            for side in [1, 0] {
+                if self.inner[node as usize].children[side as usize].overlaps(&query) {
+                    stack[*top] = 2 * node + side;
+                    *top += 1;
                 }
+            }
+        };
+        push_children(self.root.index, &mut stack, &mut top);
+        while top > 0 {
+            top -= 1;
+            let id = stack[top];
+            let child = &self.inner[(id / 2) as usize].children[(id % 2) as usize];
+            if child.count > 0 {
+                leaf(child, &mut visit);
+            } else {
+                push_children(child.index, &mut stack, &mut top);
             }
         }
     }
