@@ -189,20 +189,21 @@ impl Bvh {
         if !self.root.overlaps(&query) {
             return;
         }
-        let leaf = |child: &Child, visit: &mut dyn FnMut(u32)| {
+        let mut leaf = |child: &Child| {
             if ball.is_none_or(|b| b.meets(child)) {
                 let first = child.index as usize;
                 self.order[first..first + child.count as usize].iter().for_each(|&t| visit(t));
             }
         };
         if self.root.count > 0 {
-            leaf(&self.root, &mut visit);
+            leaf(&self.root);
             return;
         }
         // Depth first, left to right (leaves come out in the order of
         // `order`, which keeps nearby triangles' indices mostly sorted);
-        // only children that overlap go on the stack, as `2 node + side`.
-        let mut stack = [0u32; 2 * (MAX_DEPTH + 2)];
+        // only children that overlap go on the stack, as `2 node + side`
+        // (at most one pending sibling per level, plus the two just pushed).
+        let mut stack = [0u32; MAX_DEPTH + 2];
         let mut top = 0;
         let push_children = |node: u32, stack: &mut [u32], top: &mut usize| {
             for side in [1, 0] {
@@ -218,7 +219,7 @@ impl Bvh {
             let id = stack[top];
             let child = &self.inner[(id / 2) as usize].children[(id % 2) as usize];
             if child.count > 0 {
-                leaf(child, &mut visit);
+                leaf(child);
             } else {
                 push_children(child.index, &mut stack, &mut top);
             }
