@@ -10,7 +10,7 @@
 pub mod roots;
 pub mod sphere_triangle;
 
-pub use sphere_triangle::{fauerby_point_in_triangle, sweep_fauerby, sweep_robust};
+pub use sphere_triangle::{Proximity, fauerby_point_in_triangle, proximity, sweep_fauerby, sweep_robust};
 
 use sphere_triangle::{SweptBox, sweep_robust_within};
 

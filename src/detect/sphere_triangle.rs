@@ -282,8 +282,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     // Edges from the given vertices, not from `rel` (see `Candidate::edges`).
     let edges = &c.edges;
     let mut normal = c.normal.clone();
-    let nearest = (0..3)
-        .min_by(|&i, &k| norm_squared(p[i]).partial_cmp(&norm_squared(p[k])).unwrap_or(std::cmp::Ordering::Equal))?;
+    let nearest = nearest_vertex(p);
 
     // Which side the centre (the origin, now) is on, from the nearest vertex.
     let mut plane_dist = zero.clone();
@@ -366,25 +365,8 @@ pub(crate) fn sweep_robust_within<T: Real>(
     // u * |that point| only.
     let near = reach.clone() + &slack;
     if closest_sq <= near.clone() * near {
-        let (dist, sep, local) = match (feature, &normal) {
-            (Feature::Face, Some(n)) => (plane_dist.clone(), n.clone(), p[nearest]),
-            (Feature::Edge(i), _) => {
-                let (a, b, e) = (p[i as usize], p[(i as usize + 1) % 3], &edges[i as usize]);
-                let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, e.clone()) } else { (b, -e.clone()) };
-                let perp = -from - &e * (dot(&-from, &e) / norm_squared(&e));
-                let d = norm(&perp);
-                let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
-                (d, sep, from)
-            }
-            _ => {
-                let d = norm(&closest);
-                let sep = normalize(&-closest.clone()).unwrap_or_else(|| face_normal.clone());
-                (d, sep, p[nearest])
-            }
-        };
-        let sep = if is_active(feature, active) { sep } else { face_normal.clone() };
-        let scale = max_abs(local, one.clone());
-        let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * &scale;
+        let local = Local { p, edges, active, face: normal.as_ref(), plane_dist: &plane_dist, nearest };
+        let (dist, sep, tol) = local.separation(&closest, feature, &face_normal, opts);
         if dist <= one.clone() + &tol {
             if dot(&sep, vel) < zero && wins(&zero) {
                 let overlapping = dist < one - &tol;
@@ -474,6 +456,114 @@ pub(crate) fn sweep_robust_within<T: Real>(
         }
     }
     Some(best?.into_hit(Some(base), &face_normal, index, false))
+}
+
+/// A candidate seen from the sphere's centre: its vertices relative to the
+/// centre and what the robust test derives from them first.
+struct Local<'a, T: Real> {
+    /// The vertices minus the centre.
+    p: [&'a Vec3<T>; 3],
+    /// The candidate's edges (from the vertices as given).
+    edges: &'a [Vec3<T>; 3],
+    /// Its active edges and vertices.
+    active: ActiveFeatures,
+    /// The unit normal turned towards the centre (`None`: degenerate).
+    face: Option<&'a Vec3<T>>,
+    /// The centre's distance to the plane, from the nearest vertex.
+    plane_dist: &'a T,
+    /// Which vertex is nearest the centre.
+    nearest: usize,
+}
+
+impl<T: Real> Local<'_, T> {
+    /// The distance from the centre to the triangle, the separating
+    /// direction (from the closest point `closest` on `feature` to the
+    /// centre; the face normal `face_normal` for an inactive edge or vertex)
+    /// and the touching tolerance. Distance and direction are computed per
+    /// feature, from the nearest point that defines it, so both carry errors
+    /// of order `u` times that point's magnitude `s`; the tolerance is
+    /// `opts.touch_ulps * u * max(1, s)`.
+    fn separation(
+        &self,
+        closest: &Vec3<T>,
+        feature: Feature,
+        face_normal: &Vec3<T>,
+        opts: &DetectOptions,
+    ) -> (T, Vec3<T>, T) {
+        let p = &self.p;
+        let (dist, sep, local) = match (feature, self.face) {
+            (Feature::Face, Some(n)) => (self.plane_dist.clone(), n.clone(), p[self.nearest]),
+            (Feature::Edge(i), _) => {
+                let (a, b, e) = (p[i as usize], p[(i as usize + 1) % 3], &self.edges[i as usize]);
+                let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, e.clone()) } else { (b, -e.clone()) };
+                let perp = -from - &e * (dot(&-from, &e) / norm_squared(&e));
+                let d = norm(&perp);
+                let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
+                (d, sep, from)
+            }
+            _ => {
+                let d = norm(closest);
+                let sep = normalize(&-closest.clone()).unwrap_or_else(|| face_normal.clone());
+                (d, sep, p[self.nearest])
+            }
+        };
+        let sep = if is_active(feature, self.active) { sep } else { face_normal.clone() };
+        let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * max_abs(local, T::one());
+        (dist, sep, tol)
+    }
+}
+
+/// Where the unit sphere centred at `base` stands against a candidate now.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Proximity<T: Real> {
+    /// Distance from the centre to the triangle.
+    pub dist: T,
+    /// Unit separating direction, from the triangle towards the centre, as
+    /// the robust sweep reports it for a contact at `t = 0` (the face normal
+    /// on an inactive edge or vertex).
+    pub normal: Vec3<T>,
+    /// The closest point of the triangle (in the caller's coordinates).
+    pub point: Vec3<T>,
+    /// The feature it lies on.
+    pub feature: Feature,
+    /// The touching tolerance of this distance (see [`sweep_robust`]).
+    pub tol: T,
+}
+
+/// The distance and separating direction between the unit sphere at `base`
+/// and candidate `c`, computed as [`sweep_robust`] decides a contact at
+/// `t = 0` (relative to `base`, per feature): `None` when `c` is one-sided
+/// (`opts.two_sided` false) and `base` lies behind it.
+#[must_use]
+pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions) -> Option<Proximity<T>> {
+    let zero = T::zero();
+    let rel = c.triangle.relative_to(base);
+    let p = [&rel.a, &rel.b, &rel.c];
+    let nearest = nearest_vertex(p);
+    let mut face = c.normal.clone();
+    let mut plane_dist = zero.clone();
+    if let Some(n) = face.as_mut() {
+        plane_dist = -dot(n, p[nearest]);
+        if plane_dist < zero {
+            if !opts.two_sided {
+                return None;
+            }
+            *n = -n.clone();
+            plane_dist = -plane_dist;
+        }
+    }
+    let (closest, feature) = closest_point_on_triangle(&Vec3::zeros(), &rel);
+    let face_normal = face.clone().unwrap_or_else(|| normalize(&-closest.clone()).unwrap_or_else(Vec3::zeros));
+    let local = Local { p, edges: &c.edges, active: c.active, face: face.as_ref(), plane_dist: &plane_dist, nearest };
+    let (dist, normal, tol) = local.separation(&closest, feature, &face_normal, opts);
+    Some(Proximity { dist, normal, point: closest + base, feature, tol })
+}
+
+/// The index of the vertex nearest the origin (the first on a tie).
+fn nearest_vertex<T: Real>(p: [&Vec3<T>; 3]) -> usize {
+    (0..3)
+        .min_by(|&i, &k| norm_squared(p[i]).partial_cmp(&norm_squared(p[k])).unwrap_or(std::cmp::Ordering::Equal))
+        .unwrap_or(0)
 }
 
 /// Whether a contact on `feature` keeps its own normal (an active edge or

@@ -182,6 +182,9 @@ pub(crate) struct Frame<'w, T: Real> {
     /// The largest eSpace coordinate of the frame's start, for the robust
     /// padding (computed once per frame).
     pub start_magnitude: f64,
+    /// The robust response's resting contacts at the current position, by
+    /// their position in `hood`, found at the end of each pass for the next.
+    pub resting: Vec<usize>,
 }
 
 impl<T: Real> Frame<'_, T> {
@@ -249,14 +252,16 @@ pub fn move_body<T: Real>(
         trace,
         moves,
         start_magnitude,
+        resting: Vec::new(),
     };
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();
+    let still = |v: &Vec3<T>| v.iter().all(|x| *x == T::zero());
     if options.response == Response::Robust {
-        p = robust::depenetrate(&mut frame, p, &options.robust);
+        p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust);
     }
     for vel in [velocity, gravity] {
-        if vel.iter().all(|x| *x == T::zero()) {
+        if still(vel) {
             continue;
         }
         let vel_e = body.to_espace(vel);

@@ -4,6 +4,12 @@
 //! start, so far-from-origin coordinates keep their precision) with the
 //! desired displacement `w`:
 //!
+//! 0. Start from the resting contacts: the triangles within `1 + 2 pad` of
+//!    `p`, found by one scan at the end of the previous pass (or at the
+//!    start of the frame). Those that `w` approaches join the set of planes
+//!    met (step 3) before any sweep, with the normal the robust detection
+//!    would give a contact at `t = 0`; a sweep would only find each of them
+//!    again at `t = 0`. `w` is projected onto them (step 4).
 //! 1. Sweep the unit sphere along `w` (robust detection by default).
 //!    Nothing hit: move the whole way, done.
 //! 2. Advance to the hit, stopping `pad` short *along the contact normal*:
@@ -35,6 +41,10 @@
 //! ends the pass or adds a plane; once three independent planes are met the
 //! cone is a point and the pass stops (`Blocked`).
 //!
+//! Every pass ends with a scan (`settle`): the scan for the next pass's resting
+//! contacts, which also restores the skin (a body left closer than
+//! `1 + pad / 2` to a triangle is pushed out to `1 + pad`).
+//!
 //! Padding: `pad = padding_ulps * u * s + position_ulps * u * |start|`,
 //! capped at `max_padding`, where `u` is the unit roundoff, `s` the
 //! magnitude of the relative coordinates the contact was computed from (the
@@ -49,7 +59,7 @@
 
 use super::{Frame, StopReason};
 use crate::Real;
-use crate::detect::Detection;
+use crate::detect::{Detection, Hit, proximity};
 use crate::geom::{Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
 
 /// The robust response's tolerances. Distances are eSpace units (radius 1);
@@ -100,11 +110,11 @@ fn magnitude<T: Real>(v: &Vec3<T>) -> f64 {
 /// docs): `s` is the larger of 1, the displacement and the distance from
 /// `p` to the triangle's nearest vertex, the magnitudes that the contact's
 /// distance was computed from.
-fn padding<T: Real>(frame: &Frame<'_, T>, p: &Vec3<T>, w: &Vec3<T>, tri: &Triangle<T>, opts: &RobustOptions) -> T {
+fn padding<T: Real>(start_magnitude: f64, p: &Vec3<T>, w: &Vec3<T>, tri: &Triangle<T>, opts: &RobustOptions) -> T {
     let u = T::unit_roundoff();
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
     let s = magnitude(w).max(nearest).max(1.0);
-    T::c((opts.padding_ulps * u * s + opts.position_ulps * u * frame.start_magnitude).min(opts.max_padding))
+    T::c((opts.padding_ulps * u * s + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
 }
 
 /// Triangle `index` in the frame's eSpace coordinates.
@@ -183,20 +193,42 @@ fn push_out<T: Real>(frame: &Frame<'_, T>, p: Vec3<T>, normal: &Vec3<T>, want: T
 pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
     let zero = T::zero();
     let negligible = T::c(opts.feasible_ulps * T::unit_roundoff()) * norm(&w);
-    let mut remaining = w.clone();
     let mut time_left = T::one();
     let mut normals: Vec<Vec3<T>> = Vec::new();
+    // The resting contacts the displacement approaches constrain it from
+    // the start: the first sweep would only find each of them again at
+    // `t = 0` within the resting band.
+    for k in std::mem::take(&mut frame.resting) {
+        let c = &frame.hood.triangles[k];
+        if let Some(near) = proximity(c, &p, frame.detect)
+            && dot(&w, &near.normal) < zero
+        {
+            let overlapping = near.dist < T::one() - &near.tol;
+            let normal = near.normal.clone();
+            let hit = Hit {
+                t: zero.clone(),
+                point: near.point,
+                normal: near.normal,
+                feature: near.feature,
+                triangle: c.index,
+                started_overlapping: overlapping,
+            };
+            frame.record(hit, normal.clone());
+            normals.push(normal);
+        }
+    }
+    let mut remaining = if normals.is_empty() { w.clone() } else { project_onto_cone(&w, &normals, opts) };
     for _ in 0..opts.max_iterations {
         if !(norm(&remaining) > negligible) {
             frame.trace.stop = StopReason::Blocked;
-            return p;
+            return settle(frame, p, opts);
         }
         let Some(hit) = frame.check_collision(&p, &remaining) else {
             frame.trace.stop = StopReason::Free;
-            return restore_skin(frame, p + remaining, &w, opts);
+            return settle(frame, p + remaining, opts);
         };
         let tri = triangle_e(frame, hit.triangle);
-        let pad = padding(frame, &p, &remaining, &tri, opts);
+        let pad = padding(frame.start_magnitude, &p, &remaining, &tri, opts);
         // The gap to the contact along its normal now. Within the resting
         // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
         // out, so rounding cannot make it toggle between neighbouring floats.
@@ -219,39 +251,103 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
         remaining = project_onto_cone(&(&w * time_left.clone()), &normals, opts);
     }
     frame.trace.stop = StopReason::IterationCap;
-    p
+    settle(frame, p, opts)
 }
 
-/// After a move that hit nothing: a sweep may legitimately end a hair from
-/// a surface it did not reach, closer than the final rounding of the
-/// position can guarantee. If the nearest triangle is closer than
-/// `1 + pad / 2`, push out along its separating direction to `1 + pad`
-/// (room permitting, as [`push_out`]). Planes at distance `1 + pad` or more
-/// are skipped with one dot product each.
-fn restore_skin<T: Real>(frame: &Frame<'_, T>, p: Vec3<T>, w: &Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
-    let one = T::one();
-    let reach = one.clone() + T::c(opts.max_padding);
-    let mut nearest: Option<(T, Vec3<T>, &Triangle<T>)> = None;
-    for c in &frame.hood.triangles {
-        if c.box_distance_sq(&p) >= reach.clone() * &reach
-            || c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &c.triangle.a)).abs() >= reach)
-        {
-            continue;
-        }
-        let (q, _) = closest_point_on_triangle(&p, &c.triangle);
-        let dist = norm(&(&p - &q));
-        if dist < reach && nearest.as_ref().is_none_or(|b| dist < b.0) {
-            nearest = Some((dist, q, &c.triangle));
-        }
-    }
-    let Some((dist, q, tri)) = nearest else { return p };
-    let pad = padding(frame, &p, w, tri, opts);
-    let gap = dist.clone() - &one;
+/// The end of a pass (and the start of the first): restores the skin and
+/// finds the resting contacts, in one scan of the neighbourhood.
+///
+/// * Every triangle closer than `1 + 2 pad` is a resting contact, kept in
+///   [`Frame::resting`]. The next pass starts constrained by those its
+///   displacement approaches, with the normal the robust sweep would
+///   report for a contact at `t = 0` ([`proximity`]), instead of spending a
+///   sweep on finding each again.
+/// * A sweep may legitimately end a hair from a surface it did not reach,
+///   closer than the final rounding of the position can guarantee: if the
+///   nearest triangle is closer than `1 + pad / 2`, the body is pushed out
+///   along its separating direction to `1 + pad` (room permitting, as
+///   [`push_out`]) and the scan is repeated there.
+///
+/// Boxes and planes at distance `1 + max_padding` or more are skipped with
+/// one box distance or dot product each.
+fn settle<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
+    let nearest = scan_resting(frame, &p, opts);
+    restore_skin(frame, p, nearest, opts)
+}
+
+/// The push-out of [`settle`], given the scan's nearest triangle.
+fn restore_skin<T: Real>(
+    frame: &mut Frame<'_, T>,
+    p: Vec3<T>,
+    nearest: Option<Nearest<T>>,
+    opts: &RobustOptions,
+) -> Vec3<T> {
+    let Some(nearest) = nearest else { return p };
+    let (gap, pad) = (nearest.dist - T::one(), nearest.pad);
     if !(gap < pad.clone() * T::c(0.5)) {
         return p;
     }
-    let Some(dir) = normalize(&(&p - &q)) else { return p };
-    push_out(frame, p, &dir, pad - &gap, &gap.max(T::zero()))
+    let Some(dir) = normalize(&(&p - &nearest.point)) else { return p };
+    let p = push_out(frame, p, &dir, pad - &gap, &gap.max(T::zero()));
+    scan_resting(frame, &p, opts);
+    p
+}
+
+/// The triangle nearest a position, from [`scan_resting`].
+struct Nearest<T: Real> {
+    /// Its distance.
+    dist: T,
+    /// Its closest point.
+    point: Vec3<T>,
+    /// Its padding.
+    pad: T,
+}
+
+/// Fills [`Frame::resting`] with the triangles within `1 + 2 pad` of `p`
+/// (by their position in the neighbourhood) and returns the nearest one
+/// within `1 + max_padding`.
+fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOptions) -> Option<Nearest<T>> {
+    let one = T::one();
+    let reach = one.clone() + T::c(opts.max_padding);
+    let mut nearest: Option<Nearest<T>> = None;
+    frame.resting.clear();
+    for (k, c) in frame.hood.triangles.iter().enumerate() {
+        if c.box_distance_sq(p) >= reach.clone() * &reach
+            || c.normal.as_ref().is_some_and(|n| dot(n, &(p - &c.triangle.a)).abs() >= reach)
+        {
+            continue;
+        }
+        let (point, _) = closest_point_on_triangle(p, &c.triangle);
+        let dist = norm(&(p - &point));
+        if !(dist < reach) {
+            continue;
+        }
+        let pad = padding(frame.start_magnitude, p, &Vec3::zeros(), &c.triangle, opts);
+        if dist <= one.clone() + T::c(2.0) * &pad {
+            frame.resting.push(k);
+        }
+        if nearest.as_ref().is_none_or(|b| dist < b.dist) {
+            nearest = Some(Nearest { dist, point, pad });
+        }
+    }
+    nearest
+}
+
+/// The start of a robust move: [`depenetrate`] if the body starts
+/// embedded, then, if it is to move, [`settle`] (the resting contacts for
+/// the first pass). The scan that finds the resting contacts also tells
+/// whether anything is nearer than 1, so a body that starts free costs one
+/// scan.
+pub(crate) fn start<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, moving: bool, opts: &RobustOptions) -> Vec3<T> {
+    if !moving {
+        return depenetrate(frame, p, opts);
+    }
+    let nearest = scan_resting(frame, &p, opts);
+    if nearest.as_ref().is_some_and(|n| n.dist < T::one()) {
+        let p = depenetrate(frame, p, opts);
+        return settle(frame, p, opts);
+    }
+    restore_skin(frame, p, nearest, opts)
 }
 
 /// Pushes a body that starts embedded out of the geometry (run at the start
@@ -260,7 +356,7 @@ fn restore_skin<T: Real>(frame: &Frame<'_, T>, p: Vec3<T>, w: &Vec3<T>, opts: &R
 /// deepest overlap (from the closest point to the centre; the face's front
 /// normal if the centre lies on the face, or anywhere behind its plane when
 /// triangles are one-sided), to `1 + pad` from it.
-pub(crate) fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
+fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
     let one = T::one();
     for _ in 0..opts.depenetration_rounds {
         let mut deepest: Option<(T, Vec3<T>, &Triangle<T>)> = None;
@@ -289,7 +385,7 @@ pub(crate) fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opt
         } else {
             (front, one.clone())
         };
-        let pad = padding(frame, &p, &Vec3::zeros(), &tri, opts);
+        let pad = padding(frame.start_magnitude, &p, &Vec3::zeros(), &tri, opts);
         let push = depth + &pad;
         frame.trace.depenetration += push.to_f64();
         p += dir * push;
