@@ -19,23 +19,27 @@ use sweepslide::{Mpfr, Real};
 
 /// A ball of radius 0.5 at 5 m/s, 60 Hz, steered over the terrain with
 /// gravity (or the lab's OBJ scene's sphere over a mesh): the starts and
-/// velocities of 256 consecutive robust f64 frames from the first one that
-/// touches the geometry, so every backend replays the same moves and they
-/// are moves on the ground, not the free fall from the scene's start. The
-/// first steering seed from 7 on whose body touches within 2,000 frames is
-/// used (on the cow, the lab's default walk leaves the model and falls).
-fn trajectory(scene: &Scene) -> Vec<([f64; 3], [f64; 3])> {
-    let world = World::<f64>::new(scene.mesh.clone());
-    let body = Ellipsoid::<f64>::new(scene.radii).unwrap();
-    let gravity = vec3::<f64>(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
+/// velocities of 256 consecutive robust frames played in `T`, from the first
+/// one that touches the geometry, so they are moves on the ground, not the
+/// free fall from the scene's start. The velocities do not depend on the
+/// backend; the starts are each backend's own: a trajectory recorded in
+/// `f64` and rounded to `f32` would start most `f32` frames embedded by the
+/// rounding (its resting gap is `1e-14`, the rounding `1e-7`), which no `f32`
+/// user sees. The first steering seed from 7 on whose body touches within
+/// 2,000 frames is used (on the cow, the lab's default walk leaves the
+/// model and falls).
+fn trajectory<T: Real>(scene: &Scene) -> Vec<([f64; 3], [f64; 3])> {
+    let world = World::<T>::new(scene.mesh.clone());
+    let body = Ellipsoid::<T>::new(scene.radii).unwrap();
+    let gravity = vec3::<T>(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let options = MoveOptions::new(Response::Robust);
     for seed in 7..40 {
         let mut steering = Steering::new(scene, seed);
-        let mut p = vec3::<f64>(scene.start[0], scene.start[1], scene.start[2]);
+        let mut p = vec3::<T>(scene.start[0], scene.start[1], scene.start[2]);
         let mut path = Vec::with_capacity(256);
         for _ in 0..256 + 2_000 {
             let v = steering.next(scene);
-            let start = [p.x, p.y, p.z];
+            let start = [0, 1, 2].map(|i| p[i].to_f64());
             let m = move_body(&world, &body, &p, &vec3(v[0], v[1], v[2]), Some(&gravity), &options).unwrap();
             if !path.is_empty() || !m.trace.contacts.is_empty() {
                 path.push((start, v));
@@ -78,9 +82,10 @@ fn moves_in<T: Real>(
 
 fn frame_moves(c: &mut Criterion) {
     let scene = build("terrain:224", 1).unwrap();
-    let path = trajectory(&scene);
-    moves_in::<f32>(c, &scene, &path, "move_terrain100k", &Response::ALL);
+    moves_in::<f32>(c, &scene, &trajectory::<f32>(&scene), "move_terrain100k", &Response::ALL);
+    let path = trajectory::<f64>(&scene);
     moves_in::<f64>(c, &scene, &path, "move_terrain100k", &Response::ALL);
+    // `Mpfr<53>` replays the `f64` starts, which it holds exactly.
     moves_in::<Mpfr<53>>(c, &scene, &path[..32], "move_terrain100k_mpfr", &[Response::Robust]);
     moves_in::<f64>(c, &scene, &path[..32], "move_terrain100k_mpfr", &[Response::Robust]);
 }
@@ -97,10 +102,9 @@ fn mesh_moves(c: &mut Criterion) {
     }
     for path in meshes {
         let scene = Scene::from_obj(&path).unwrap();
-        let path = trajectory(&scene);
         let group = format!("move_mesh_{}", scene.name);
-        moves_in::<f32>(c, &scene, &path, &group, &Response::ALL);
-        moves_in::<f64>(c, &scene, &path, &group, &Response::ALL);
+        moves_in::<f32>(c, &scene, &trajectory::<f32>(&scene), &group, &Response::ALL);
+        moves_in::<f64>(c, &scene, &trajectory::<f64>(&scene), &group, &Response::ALL);
     }
 }
 
@@ -119,7 +123,7 @@ fn bvh(c: &mut Criterion) {
     g.sample_size(10);
     g.bench_function("build", |b| b.iter(|| black_box(Bvh::build(&boxes))));
     let world = World::<f32>::new(mesh.clone());
-    let path = trajectory(&scene);
+    let path = trajectory::<f32>(&scene);
     let mut out = Vec::new();
     g.bench_function("query_frame_box", |b| {
         b.iter(|| {
@@ -137,7 +141,7 @@ fn bvh(c: &mut Criterion) {
 fn batch(c: &mut Criterion) {
     let scene = build("terrain:224", 1).unwrap();
     let world = World::<f32>::new(scene.mesh.clone());
-    let path = trajectory(&scene);
+    let path = trajectory::<f32>(&scene);
     let body = Ellipsoid::<f32>::new(scene.radii).unwrap();
     let gravity = Some(vec3::<f32>(0.0, scene.gravity[1], 0.0));
     // Bodies standing on the ground all over the middle of the terrain

@@ -14,7 +14,8 @@
 //!   (0, -0.01, 0) per frame, over the 100,352-triangle `terrain:224`. Each
 //!   iteration runs the next of 256 consecutive frame inputs (start,
 //!   displacement) taken from a trajectory, so every call is a realistic
-//!   grounded move. sweepslide runs `move_body` (robust f32 and f64,
+//!   grounded move: the robust `f32` trajectory for every `f32` run and
+//!   Rapier, the robust `f64` one for `f64`. sweepslide runs `move_body` (robust f32 and f64,
 //!   Fauerby and Linahan f32 for reference); Rapier runs
 //!   `KinematicCharacterController::move_shape` on the same mesh as a
 //!   `TriMesh` collider, with the same ball, start and displacement
@@ -211,10 +212,13 @@ fn frame_move(c: &mut Criterion) {
     let scene = build("terrain:224", 1).expect("terrain scene");
     assert_eq!(scene.mesh.len(), 100_352);
     assert_eq!(scene.radii, [0.5; 3]);
-    let frames = trajectory(&scene, 1, FRAMES);
+    // Rapier and the `f32` runs replay the `f32` trajectory (its positions
+    // are `f32` values, the same for both); `f64` replays its own.
+    let frames = trajectory::<f32>(&scene, 1, FRAMES);
     let mut g = c.benchmark_group("frame_move");
     bench_ours::<f32>(&mut g, "robust_f32", &scene.mesh, scene.radii, scene.gravity, &frames, Response::Robust);
-    bench_ours::<f64>(&mut g, "robust_f64", &scene.mesh, scene.radii, scene.gravity, &frames, Response::Robust);
+    let frames64 = trajectory::<f64>(&scene, 1, FRAMES);
+    bench_ours::<f64>(&mut g, "robust_f64", &scene.mesh, scene.radii, scene.gravity, &frames64, Response::Robust);
     bench_ours::<f32>(&mut g, "fauerby_f32", &scene.mesh, scene.radii, scene.gravity, &frames, Response::Fauerby);
     bench_ours::<f32>(&mut g, "linahan_f32", &scene.mesh, scene.radii, scene.gravity, &frames, Response::Linahan);
 

@@ -13,7 +13,8 @@ use rapier3d::prelude::{
     RigidBodySet, Vector,
 };
 use std::sync::Arc;
-use sweepslide::geom::{Ellipsoid, Vec3, vec3};
+use sweepslide::Real;
+use sweepslide::geom::{Ellipsoid, vec3};
 use sweepslide::lab::Scene;
 use sweepslide::lab::scenes::Steering;
 use sweepslide::respond::{MoveOptions, Response, move_body};
@@ -31,27 +32,30 @@ pub struct FrameInput {
 
 /// `count` consecutive frame inputs of `scene` (its start, its motion
 /// program for `seed`, its gravity) taken from a trajectory played by
-/// sweepslide's robust response in `f64`, starting with the first frame
+/// sweepslide's robust response in `T`, starting with the first frame
 /// whose move touched the geometry (so a falling start is skipped and every
-/// input is a realistic grounded move).
+/// input is a realistic grounded move). The velocities do not depend on
+/// `T`; the positions are `T`'s own (an `f64` trajectory rounded to `f32`
+/// would start most `f32` frames embedded by the rounding).
 ///
 /// # Panics
 /// If the scene cannot be played, or the body never touches anything within
 /// `count + 10_000` frames.
 #[must_use]
-pub fn trajectory(scene: &Scene, seed: u64, count: usize) -> Vec<FrameInput> {
-    let world = World::<f64>::new(scene.mesh.clone());
-    let body = Ellipsoid::<f64>::new(scene.radii).expect("scene radii are valid");
+pub fn trajectory<T: Real>(scene: &Scene, seed: u64, count: usize) -> Vec<FrameInput> {
+    let world = World::<T>::new(scene.mesh.clone());
+    let body = Ellipsoid::<T>::new(scene.radii).expect("scene radii are valid");
     let opts = MoveOptions::new(Response::Robust);
-    let gravity = v64(scene.gravity);
+    let v = |a: [f64; 3]| vec3::<T>(a[0], a[1], a[2]);
+    let gravity = v(scene.gravity);
     let mut steering = Steering::new(scene, seed);
-    let mut p = v64(scene.start);
+    let mut p = v(scene.start);
     let mut out = Vec::with_capacity(count);
     for _ in 0..count + 10_000 {
-        let v = steering.next(scene);
-        let m = move_body(&world, &body, &p, &v64(v), Some(&gravity), &opts).expect("finite inputs");
+        let velocity = steering.next(scene);
+        let m = move_body(&world, &body, &p, &v(velocity), Some(&gravity), &opts).expect("finite inputs");
         if !out.is_empty() || !m.trace.contacts.is_empty() {
-            out.push(FrameInput { position: [p.x, p.y, p.z], velocity: v });
+            out.push(FrameInput { position: [0, 1, 2].map(|i| p[i].to_f64()), velocity });
             if out.len() == count {
                 return out;
             }
@@ -59,10 +63,6 @@ pub fn trajectory(scene: &Scene, seed: u64, count: usize) -> Vec<FrameInput> {
         p = m.position;
     }
     panic!("the body never touched the geometry of {}", scene.name);
-}
-
-fn v64(a: [f64; 3]) -> Vec3<f64> {
-    vec3(a[0], a[1], a[2])
 }
 
 /// `a` as a Rapier (`f32`) vector.

@@ -160,7 +160,7 @@ fn print_table(scene: &str, rows: &[Row]) {
 /// Open-loop comparison on the bench's terrain inputs.
 fn terrain_agreement() {
     let scene = build("terrain:224", 1).expect("terrain scene");
-    let frames = trajectory(&scene, 1, 256);
+    let frames = trajectory::<f32>(&scene, 1, 256);
     let world32 = World::<f32>::new(scene.mesh.clone());
     let world64 = World::<f64>::new(scene.mesh.clone());
     let body = Ellipsoid::<f32>::new(scene.radii).expect("valid radii");
