@@ -185,6 +185,9 @@ pub(crate) struct Frame<'w, T: Real> {
     /// The robust response's resting contacts at the current position, by
     /// their position in `hood`, found at the end of each pass for the next.
     pub resting: Vec<usize>,
+    /// The robust response's planes met in the current pass (a buffer kept
+    /// across passes).
+    pub planes: Vec<Vec3<T>>,
 }
 
 impl<T: Real> Frame<'_, T> {
@@ -253,6 +256,7 @@ pub fn move_body<T: Real>(
         moves,
         start_magnitude,
         resting: Vec::new(),
+        planes: Vec::new(),
     };
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();

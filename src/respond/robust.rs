@@ -194,7 +194,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
     let zero = T::zero();
     let negligible = T::c(opts.feasible_ulps * T::unit_roundoff()) * norm(&w);
     let mut time_left = T::one();
-    let mut normals: Vec<Vec3<T>> = Vec::new();
+    frame.planes.clear();
     // The resting contacts the displacement approaches constrain it from
     // the start: the first sweep would only find each of them again at
     // `t = 0` within the resting band.
@@ -214,10 +214,10 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
                 started_overlapping: overlapping,
             };
             frame.record(hit, normal.clone());
-            normals.push(normal);
+            frame.planes.push(normal);
         }
     }
-    let mut remaining = if normals.is_empty() { w.clone() } else { project_onto_cone(&w, &normals, opts) };
+    let mut remaining = if frame.planes.is_empty() { w.clone() } else { project_onto_cone(&w, &frame.planes, opts) };
     for _ in 0..opts.max_iterations {
         if !(norm(&remaining) > negligible) {
             frame.trace.stop = StopReason::Blocked;
@@ -246,9 +246,9 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
         }
         let n = hit.normal.clone();
         frame.record(hit, n.clone());
-        normals.push(n);
+        frame.planes.push(n);
         time_left *= T::one() - t_move;
-        remaining = project_onto_cone(&(&w * time_left.clone()), &normals, opts);
+        remaining = project_onto_cone(&(&w * time_left.clone()), &frame.planes, opts);
     }
     frame.trace.stop = StopReason::IterationCap;
     settle(frame, p, opts)
