@@ -359,3 +359,25 @@ fn fuzz_found_scenes_reproduce_and_the_robust_response_passes_them() {
         }
     }
 }
+
+/// The robust response meets the contacts a body rests on without sweeping
+/// to them (one sweep per pass on a floor, where finding the floor again
+/// took a second), and meets them as the sweeps would: on the seams of the
+/// tessellated floor and the step noses of the staircase, the triangle and
+/// feature of every contact agree with the `Mpfr<256>` replay (run with the
+/// same tolerances) in `f32` and `f64`.
+#[test]
+fn resting_contacts_are_met_without_sweeps_and_as_the_sweeps_would() {
+    for name in ["floor", "tessellated-floor", "staircase", "corner"] {
+        let scene = Arc::new(sweepslide::lab::scenes::build(name, 1).unwrap());
+        for precision in [Precision::F32, Precision::F64] {
+            let cfg =
+                RunConfig { scene: scene.clone(), response: Response::Robust, detection: None, precision, seed: 1 };
+            let r = run(&cfg).unwrap().result;
+            assert_eq!((r.decision_flips, r.plane_flips, r.penetrating_frames), (0, 0, 0), "{name} {precision}");
+            if name == "floor" {
+                assert!(r.mean_iterations < 1.05, "floor {precision}: {} sweeps per move", r.mean_iterations);
+            }
+        }
+    }
+}

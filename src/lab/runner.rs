@@ -190,6 +190,25 @@ fn is_capped(stop: StopReason) -> bool {
     matches!(stop, StopReason::DepthCap | StopReason::ThirdPlane | StopReason::IterationCap)
 }
 
+/// `opts` for the `Mpfr<256>` replay: every tolerance counted in units of
+/// the unit roundoff (the robust detection's touching tolerance, the robust
+/// response's padding, admissibility and parallel-plane tolerances) scaled
+/// from `u` of `T` to `u` of the reference, so the replay decides with the
+/// same absolute tolerances as the run, only without its rounding. (With
+/// its own, far smaller tolerances, a body the run holds in the resting
+/// band would be, for the replay, a body a hair away that must sweep to
+/// the contact first: a flip that no rounding caused.)
+fn same_tolerances<T: Real>(opts: &MoveOptions) -> MoveOptions {
+    let k = T::unit_roundoff() / Mpfr::<REFERENCE_BITS>::unit_roundoff();
+    let mut o = opts.clone();
+    o.detect.touch_ulps *= k;
+    let r = &mut o.robust;
+    for x in [&mut r.padding_ulps, &mut r.position_ulps, &mut r.parallel_ulps, &mut r.feasible_ulps] {
+        *x *= k;
+    }
+    o
+}
+
 /// Runs `cfg` in backend `T`.
 fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let scene = &*cfg.scene;
@@ -200,6 +219,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let ref_body = Ellipsoid::from_radii(to_reference(body.radii()))?;
     let mut opts = MoveOptions::new(cfg.response);
     opts.detection = cfg.detection;
+    let ref_opts = same_tolerances::<T>(&opts);
     let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let has_gravity = scene.gravity != [0.0; 3];
     if scene.velocity == [0.0; 3] && !has_gravity {
@@ -229,7 +249,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
             &to_reference(&p),
             &to_reference(&vel),
             has_gravity.then(|| to_reference(&gravity)).as_ref(),
-            &opts,
+            &ref_opts,
         )?;
         let flip = decisions(&m) != decisions(&replay);
         flips += usize::from(flip);

@@ -23,7 +23,7 @@ pub use fauerby::FauerbyOptions;
 pub use linahan::LinahanOptions;
 pub use robust::RobustOptions;
 
-use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, Reach, check_finite};
+use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, Proximity, Reach, check_finite};
 use crate::geom::{Ellipsoid, Vec3, norm};
 use crate::world::World;
 use crate::{Error, Real};
@@ -188,6 +188,9 @@ pub(crate) struct Frame<'w, T: Real> {
     /// The robust response's planes met in the current pass (a buffer kept
     /// across passes).
     pub planes: Vec<Vec3<T>>,
+    /// The robust response's resting contacts not met yet at the start of
+    /// a pass (triangle index and proximity; a buffer kept across passes).
+    pub seeds: Vec<(u32, Proximity<T>)>,
 }
 
 impl<T: Real> Frame<'_, T> {
@@ -257,6 +260,7 @@ pub fn move_body<T: Real>(
         start_magnitude,
         resting: Vec::new(),
         planes: Vec::new(),
+        seeds: Vec::new(),
     };
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();

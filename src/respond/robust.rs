@@ -60,7 +60,7 @@
 use super::{Frame, StopReason};
 use crate::Real;
 use crate::detect::{Detection, Hit, proximity};
-use crate::geom::{Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
+use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
 
 /// The robust response's tolerances. Distances are eSpace units (radius 1);
 /// `*_ulps` fields are multiples of the backend's unit roundoff `u`.
@@ -165,6 +165,73 @@ pub fn project_onto_cone<T: Real>(w: &Vec3<T>, normals: &[Vec3<T>], opts: &Robus
     best.map_or_else(Vec3::zeros, |(_, v)| v)
 }
 
+/// The start of a pass from `p` by `w`: meets the resting contacts (see
+/// [`settle`]) as the pass's first sweeps would, without sweeping, and
+/// returns `w` projected onto them.
+///
+/// A sweep from within the resting band finds the contact it approaches
+/// soonest (gap over approach speed, ties to the lower triangle index) at
+/// once, with no advance; the next sweep, along the projected displacement,
+/// the next one it still approaches, and so on. This replays that sequence
+/// on the contacts' distances and normals ([`proximity`]): the contacts met
+/// are those the sweeps would have met, in the same order, and a contact
+/// the projected motion no longer approaches (another triangle of the same
+/// plane, a wall the slide leaves) is not met.
+fn meet_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, w: &Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
+    let zero = T::zero();
+    frame.seeds.clear();
+    for &k in &frame.resting {
+        let c = &frame.hood.triangles[k];
+        if let Some(near) = proximity(c, p, frame.detect) {
+            frame.seeds.push((c.index, near));
+        }
+    }
+    let tol = T::c(opts.feasible_ulps * T::unit_roundoff()) * norm(w);
+    let mut remaining = w.clone();
+    loop {
+        let mut soonest: Option<(usize, T, u8)> = None;
+        for (k, (_, near)) in frame.seeds.iter().enumerate() {
+            let approach = -dot(&remaining, &near.normal);
+            if !(approach > tol) {
+                continue;
+            }
+            // Sooner by more than the distance's touching tolerance wins.
+            // Within it, a tie: as in the sweep, a face beats an edge, an
+            // edge a vertex, and the lower triangle index (met first) the
+            // rest (on a seam of a tessellated surface, the neighbour's
+            // edge and the face the body stands over are equally near).
+            let time = (near.dist.clone() - T::one()).max(zero.clone()) / &approach;
+            let margin = near.tol.clone() / approach;
+            let rank = match near.feature {
+                Feature::Face => 0,
+                Feature::Edge(_) => 1,
+                Feature::Vertex(_) => 2,
+            };
+            let wins = soonest.as_ref().is_none_or(|(_, best, best_rank)| {
+                time.clone() + &margin < *best || (!(time.clone() - &margin > *best) && rank < *best_rank)
+            });
+            if wins {
+                soonest = Some((k, time, rank));
+            }
+        }
+        let Some((k, _, _)) = soonest else { return remaining };
+        let (triangle, near) = frame.seeds.remove(k);
+        let overlapping = near.dist < T::one() - &near.tol;
+        let normal = near.normal.clone();
+        let hit = Hit {
+            t: zero.clone(),
+            point: near.point,
+            normal: near.normal,
+            feature: near.feature,
+            triangle,
+            started_overlapping: overlapping,
+        };
+        frame.record(hit, normal.clone());
+        frame.planes.push(normal);
+        remaining = project_onto_cone(w, &frame.planes, opts);
+    }
+}
+
 /// Moves `p` out along the unit `normal` by up to `want`, but no further
 /// than to the middle of the room between the contact behind (`gap` away)
 /// and whatever lies ahead. The sweep looks `2 want + gap` ahead, further
@@ -195,29 +262,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
     let negligible = T::c(opts.feasible_ulps * T::unit_roundoff()) * norm(&w);
     let mut time_left = T::one();
     frame.planes.clear();
-    // The resting contacts the displacement approaches constrain it from
-    // the start: the first sweep would only find each of them again at
-    // `t = 0` within the resting band.
-    for k in std::mem::take(&mut frame.resting) {
-        let c = &frame.hood.triangles[k];
-        if let Some(near) = proximity(c, &p, frame.detect)
-            && dot(&w, &near.normal) < zero
-        {
-            let overlapping = near.dist < T::one() - &near.tol;
-            let normal = near.normal.clone();
-            let hit = Hit {
-                t: zero.clone(),
-                point: near.point,
-                normal: near.normal,
-                feature: near.feature,
-                triangle: c.index,
-                started_overlapping: overlapping,
-            };
-            frame.record(hit, normal.clone());
-            frame.planes.push(normal);
-        }
-    }
-    let mut remaining = if frame.planes.is_empty() { w.clone() } else { project_onto_cone(&w, &frame.planes, opts) };
+    let mut remaining = meet_resting(frame, &p, &w, opts);
     for _ in 0..opts.max_iterations {
         if !(norm(&remaining) > negligible) {
             frame.trace.stop = StopReason::Blocked;
