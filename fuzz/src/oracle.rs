@@ -558,23 +558,33 @@ pub fn padding_in_range<T: Real>(case: &MoveCase) -> bool {
     opts.position_ulps * u * reach + opts.padding_ulps * u * s <= opts.max_padding
 }
 
-/// The robust padding at the start in eSpace units, by its smallest term
-/// (`padding_ulps u` with `s = 1`, plus `position_ulps u |start|`): a
-/// start closer to the geometry than this is inside the skin.
-fn start_skin<T: Real>(case: &MoveCase) -> f64 {
+/// The robust padding at the start, in eSpace units, for a contact on
+/// the triangle `tri` (eSpace, relative to the start): as the response
+/// computes it (`src/respond/robust.rs`, `padding`), with `s` the larger of
+/// 1 and the distance to the triangle's nearest vertex (largest coordinate),
+/// and the `position_ulps u |start|` term; capped.
+fn start_skin<T: Real>(case: &MoveCase, tri: &Triangle<f64>) -> f64 {
     let opts = RobustOptions::default();
     let u = T::unit_roundoff();
     let e = (0..3).map(|i| (case.start[i] / case.radii[i]).abs()).fold(0.0, f64::max);
-    (opts.padding_ulps * u + opts.position_ulps * u * e).min(opts.max_padding)
+    let s = [&tri.a, &tri.b, &tri.c].iter().map(|v| v.amax()).fold(f64::INFINITY, f64::min).max(1.0);
+    (opts.padding_ulps * u * s + opts.position_ulps * u * e).min(opts.max_padding)
 }
 
-/// Whether the start lies within the padding skin of two triangles whose
-/// closest points are on opposite sides of the centre ([`Skip::StartsSqueezed`]),
-/// in eSpace and `f64` (a classification of the input, not a measurement:
-/// a triangle within rounding of the skin's edge may fall either way).
-fn squeezed(case: &MoveCase, skin: f64) -> bool {
-    let e = |v: &[f64; 3]| vec3::<f64>(v[0] / case.radii[0], v[1] / case.radii[1], v[2] / case.radii[2]);
-    let centre = e(&case.start);
+/// Whether the start lies within the padding skin (the padding the response
+/// would keep from each, [`start_skin`]) of two triangles whose closest
+/// points are on opposite sides of the centre ([`Skip::StartsSqueezed`]), in
+/// eSpace and `f64` (a classification of the input, not a measurement: a
+/// triangle within rounding of the skin's edge may fall either way).
+fn squeezed<T: Real>(case: &MoveCase) -> bool {
+    let e = |v: &[f64; 3]| {
+        vec3::<f64>(
+            (v[0] - case.start[0]) / case.radii[0],
+            (v[1] - case.start[1]) / case.radii[1],
+            (v[2] - case.start[2]) / case.radii[2],
+        )
+    };
+    let centre = Vec3::<f64>::zeros();
     let directions: Vec<Vec3<f64>> = case
         .triangles
         .iter()
@@ -582,17 +592,10 @@ fn squeezed(case: &MoveCase, skin: f64) -> bool {
             let tri = Triangle::new(e(&t[0]), e(&t[1]), e(&t[2]));
             let (q, _) = closest_point_on_triangle(&centre, &tri);
             let d = centre - q;
-            (d.norm() < 1.0 + skin).then_some(d)
+            (d.norm() < 1.0 + start_skin::<T>(case, &tri)).then_some(d)
         })
         .collect();
     directions.iter().enumerate().any(|(i, a)| directions[i + 1..].iter().any(|b| a.dot(b) < 0.0))
-}
-
-/// `penetration` reports world units for a sphere (times its radius) and
-/// eSpace units for an ellipsoid.
-fn skin_scale(case: &MoveCase) -> f64 {
-    let [a, b, c] = case.radii;
-    if a == b && b == c { a } else { 1.0 }
 }
 
 /// Rounds a case into `T` and checks its range and its start.
@@ -629,7 +632,7 @@ pub fn prepare<T: Real>(case: &MoveCase) -> Result<Prepared<T>, Skip> {
     }
     match penetration(&world, body.radii(), &start) {
         Some(p) if p > 0.0 => return Err(Skip::StartsInside),
-        Some(p) if -p < start_skin::<T>(case) * skin_scale(case) && squeezed(case, start_skin::<T>(case)) => {
+        Some(_) if squeezed::<T>(case) => {
             return Err(Skip::StartsSqueezed);
         }
         _ => {}
