@@ -521,7 +521,7 @@ fn check_bvh<T: Real>(scene: &Scene, radii: [f64; 3]) -> Result<(), TestCaseErro
                 Candidate::new(t, Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c)), world.mesh().active(t))
             })
             .collect();
-        let all = Neighbourhood { origin: origin.clone(), triangles };
+        let all = Neighbourhood { origin: origin.clone(), triangles: triangles.into() };
         prop_assert_eq!(all.triangles.len(), scene.tris.len());
         let base = body.to_espace(&(&pos - &origin));
         let evel = body.to_espace(&vel);

@@ -17,6 +17,7 @@ use sphere_triangle::{SweptBox, sweep_robust_within};
 use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, is_finite, norm, norm_squared, normalize};
 use crate::world::{ActiveFeatures, World};
 use crate::{Error, Real};
+use smallvec::SmallVec;
 
 /// Which sphere-vs-triangle test to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -106,9 +107,16 @@ pub struct Hit<T: Real> {
 pub struct Neighbourhood<T: Real> {
     /// World-space origin of the eSpace coordinates.
     pub origin: Vec3<T>,
-    /// The candidates, by increasing index, in eSpace relative to `origin`.
-    pub triangles: Vec<Candidate<T>>,
+    /// The candidates, by increasing index, in eSpace relative to `origin`
+    /// (the first [`INLINE_CANDIDATES`] stored inline: a frame's
+    /// neighbourhood costs no allocation).
+    pub triangles: SmallVec<[Candidate<T>; INLINE_CANDIDATES]>,
 }
+
+/// How many candidates a [`Neighbourhood`] holds without allocating: a
+/// body walking on a tessellated surface gathers about 9 (the terrain of
+/// `docs/performance.md`, cells as wide as the body's radius).
+pub const INLINE_CANDIDATES: usize = 16;
 
 /// A triangle of a mesh ready for detection, with what every sweep of a
 /// frame would otherwise recompute: its unit normal and its box.
@@ -146,12 +154,18 @@ impl<T: Real> Candidate<T> {
     /// A candidate from a triangle of a mesh.
     #[must_use]
     pub fn new(index: u32, triangle: Triangle<T>, active: ActiveFeatures) -> Self {
+        let (lo, hi) = triangle.bounds();
+        Self::with_bounds(index, triangle, active, lo, hi)
+    }
+
+    /// [`Candidate::new`] given the triangle's box `[lo, hi]` (as
+    /// [`Triangle::bounds`] computes it), when the caller has it already.
+    fn with_bounds(index: u32, triangle: Triangle<T>, active: ActiveFeatures, lo: Vec3<T>, hi: Vec3<T>) -> Self {
         let raw = triangle.unnormalized_normal();
         let area2 = norm(&raw);
         let has_area = area2 > T::zero() && area2.is_finite();
         // As `normalize(&raw)`, without taking the norm twice.
         let normal = has_area.then(|| raw.map(|x| x / &area2));
-        let (lo, hi) = triangle.bounds();
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
         let edges = [b - a, c - b, a - c];
         let longest = edges.iter().map(norm_squared).fold(T::zero(), |m, x| m.max(x));
@@ -231,8 +245,15 @@ impl<T: Real> Reach<T> {
 }
 
 impl<T: Real> Neighbourhood<T> {
-    /// The triangles of `world` that may lie within `reach`, mapped to
-    /// eSpace relative to `origin`, by increasing index: those of the BVH's
+    /// An empty neighbourhood with eSpace coordinates relative to `origin`.
+    #[must_use]
+    pub fn new(origin: Vec3<T>) -> Self {
+        Neighbourhood { origin, triangles: SmallVec::new() }
+    }
+
+    /// Replaces the candidates with the triangles of `world` that may lie
+    /// within `reach`, mapped to eSpace relative to `self.origin`, by
+    /// increasing index: those of the BVH's
     /// leaves that meet the reach's box whose own eSpace box lies within the
     /// reach's radius of its centre. Every triangle within reach is among
     /// them; a few outside the box may be too (the sweeps reject them).
@@ -242,26 +263,31 @@ impl<T: Real> Neighbourhood<T> {
     /// to `origin`), far below the [`REACH_MARGIN`] that every reach carries
     /// beyond the unit radius; the world box and ball handed to the BVH are
     /// widened for the conversion to `f64` by [`World::each_candidate`].
-    #[must_use]
-    pub fn gather(world: &World<T>, body: &Ellipsoid<T>, origin: Vec3<T>, reach: &Reach<T>) -> Self {
-        let to_e = |v: &Vec3<T>| body.to_espace(&(v - &origin));
+    pub fn gather(&mut self, world: &World<T>, body: &Ellipsoid<T>, reach: &Reach<T>) {
+        let origin = &self.origin;
+        let to_e = |v: &Vec3<T>| body.to_espace(&(v - origin));
         let centre = to_e(&reach.centre);
         let radius_sq = reach.radius.clone() * &reach.radius;
         // The BVH's leaves hold several triangles and its bounds are rounded
         // outward; the distance of each triangle's own eSpace box keeps only
         // those within reach, and only they pay for a candidate's normal,
         // edges and shape.
-        let mut triangles = Vec::with_capacity(8);
+        // Indices first, sorted, so that candidates are built in place in
+        // their final order.
+        let mut indices: SmallVec<[u32; 2 * INLINE_CANDIDATES]> = SmallVec::new();
         world.each_candidate(&reach.min, &reach.max, Some((&reach.centre, body.radii(), &reach.radius)), |t| {
+            indices.push(t);
+        });
+        indices.sort_unstable();
+        self.triangles.clear();
+        for t in indices {
             let w = world.corners(t);
             let triangle = Triangle::new(to_e(w[0]), to_e(w[1]), to_e(w[2]));
             let (lo, hi) = triangle.bounds();
             if box_distance_sq(&lo, &hi, &centre) <= radius_sq {
-                triangles.push(Candidate::new(t, triangle, world.mesh().active(t)));
+                self.triangles.push(Candidate::with_bounds(t, triangle, world.mesh().active(t), lo, hi));
             }
-        });
-        triangles.sort_unstable_by_key(|c| c.index);
-        Neighbourhood { origin, triangles }
+        }
     }
 
     /// The earliest hit of the unit sphere at `base` moving by `vel` (both in
@@ -346,7 +372,8 @@ pub fn sweep_world<T: Real>(
         Detection::Fauerby => Vec3::zeros(),
     };
     let reach = Reach::of_sweep(body, position, velocity);
-    let hood = Neighbourhood::gather(world, body, origin.clone(), &reach);
+    let mut hood = Neighbourhood::new(origin.clone());
+    hood.gather(world, body, &reach);
     let base = body.to_espace(&(position - &origin));
     let vel = body.to_espace(velocity);
     Ok(hood.earliest_hit(detection, &base, &vel, opts).map(|h| Hit {

@@ -27,6 +27,7 @@ use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, Proximity, Rea
 use crate::geom::{Ellipsoid, Vec3, norm};
 use crate::world::World;
 use crate::{Error, Real};
+use smallvec::SmallVec;
 
 /// Which collision response to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -184,13 +185,13 @@ pub(crate) struct Frame<'w, T: Real> {
     pub start_magnitude: f64,
     /// The robust response's resting contacts at the current position, by
     /// their position in `hood`, found at the end of each pass for the next.
-    pub resting: Vec<usize>,
+    pub resting: SmallVec<[usize; 16]>,
     /// The robust response's planes met in the current pass (a buffer kept
     /// across passes).
-    pub planes: Vec<Vec3<T>>,
+    pub planes: SmallVec<[Vec3<T>; 8]>,
     /// The robust response's resting contacts not met yet at the start of
     /// a pass (triangle index and proximity; a buffer kept across passes).
-    pub seeds: Vec<(u32, Proximity<T>)>,
+    pub seeds: SmallVec<[(u32, Proximity<T>); 8]>,
 }
 
 impl<T: Real> Frame<'_, T> {
@@ -206,7 +207,7 @@ impl<T: Real> Frame<'_, T> {
     pub fn regather(&mut self, p: &Vec3<T>) {
         let at = self.body.from_espace(p) + &self.hood.origin;
         let reach = Reach::of_frame(self.body, &at, &[&self.moves[0], &self.moves[1]]);
-        self.hood = Neighbourhood::gather(self.world, self.body, self.hood.origin.clone(), &reach);
+        self.hood.gather(self.world, self.body, &reach);
     }
 
     /// Records a contact.
@@ -245,7 +246,6 @@ pub fn move_body<T: Real>(
         Response::Fauerby | Response::Linahan => Vec3::zeros(),
     };
     let reach = Reach::of_frame(body, position, &[velocity, gravity]);
-    let hood = Neighbourhood::gather(world, body, origin.clone(), &reach);
     let trace = Trace { iterations: 0, contacts: Vec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
     let moves = [velocity.clone(), gravity.clone()];
     let start_magnitude = body.to_espace(position).iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max);
@@ -254,14 +254,15 @@ pub fn move_body<T: Real>(
         body,
         detection: options.effective_detection(),
         detect: &options.detect,
-        hood,
+        hood: Neighbourhood::new(origin.clone()),
         trace,
         moves,
         start_magnitude,
-        resting: Vec::new(),
-        planes: Vec::new(),
-        seeds: Vec::new(),
+        resting: SmallVec::new(),
+        planes: SmallVec::new(),
+        seeds: SmallVec::new(),
     };
+    frame.hood.gather(world, body, &reach);
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();
     let still = |v: &Vec3<T>| v.iter().all(|x| *x == T::zero());
