@@ -14,7 +14,7 @@ pub use sphere_triangle::{Proximity, fauerby_point_in_triangle, proximity, sweep
 
 use sphere_triangle::{SweptBox, sweep_robust_within};
 
-use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, is_finite, norm, norm_squared, normalize};
+use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, cross, is_finite, norm, norm_squared, normalize};
 use crate::world::{ActiveFeatures, World};
 use crate::{Error, Real};
 use smallvec::SmallVec;
@@ -161,15 +161,18 @@ impl<T: Real> Candidate<T> {
     /// [`Candidate::new`] given the triangle's box `[lo, hi]` (as
     /// [`Triangle::bounds`] computes it), when the caller has it already.
     fn with_bounds(index: u32, triangle: Triangle<T>, active: ActiveFeatures, lo: Vec3<T>, hi: Vec3<T>) -> Self {
-        let raw = triangle.unnormalized_normal();
-        let area2 = norm(&raw);
-        let has_area = area2 > T::zero() && area2.is_finite();
-        // As `normalize(&raw)`, without taking the norm twice.
-        let normal = has_area.then(|| raw.map(|x| x / &area2));
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
         let edges = [b - a, c - b, a - c];
+        // `(b - a) x (c - a)`, bit for bit (`c - a` is `-(a - c)` exactly).
+        let raw = cross(&edges[2], &edges[0]);
+        let area2 = norm(&raw);
+        let has_area = area2 > T::zero() && area2.is_finite();
+        // One quotient for the normal and the shape: the unit normal's
+        // components carry `2u` more than a division each would.
+        let inverse = T::one() / &area2;
+        let normal = has_area.then(|| raw * inverse.clone());
         let longest = edges.iter().map(norm_squared).fold(T::zero(), |m, x| m.max(x));
-        let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
+        let shape = if has_area { longest * inverse } else { T::c(f64::INFINITY) };
         Candidate { index, triangle, active, normal, lo, hi, edges, shape }
     }
 

@@ -151,8 +151,9 @@ pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Ve
         let w = d43.clone() / (d43 + &d56);
         return (&tri.b + (&tri.c - &tri.b) * w, Feature::Edge(1));
     }
-    let denom = va + &vb + &vc;
-    let v = vb / &denom;
-    let w = vc / &denom;
+    // One quotient, two products (Ericson's form).
+    let inverse = T::one() / (va + &vb + &vc);
+    let v = vb * &inverse;
+    let w = vc * &inverse;
     (&tri.a + ab * v + ac * w, Feature::Face)
 }
