@@ -145,8 +145,9 @@ pub struct Contact<T: Real> {
 pub struct Trace<T: Real> {
     /// Collision checks run (calls to the world query), all passes together.
     pub iterations: u32,
-    /// The contacts met, in order.
-    pub contacts: Vec<Contact<T>>,
+    /// The contacts met, in order (the first four stored inline: a move
+    /// that meets no more allocates nothing).
+    pub contacts: SmallVec<[Contact<T>; 4]>,
     /// Why the last pass stopped.
     pub stop: StopReason,
     /// How far (eSpace) the robust response pushed the body out of geometry
@@ -246,7 +247,7 @@ pub fn move_body<T: Real>(
         Response::Fauerby | Response::Linahan => Vec3::zeros(),
     };
     let reach = Reach::of_frame(body, position, &[velocity, gravity]);
-    let trace = Trace { iterations: 0, contacts: Vec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
+    let trace = Trace { iterations: 0, contacts: SmallVec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
     let moves = [velocity.clone(), gravity.clone()];
     let start_magnitude = body.to_espace(position).iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max);
     let mut frame = Frame {
