@@ -167,12 +167,13 @@ impl<T: Real> Candidate<T> {
         let raw = cross(&edges[2], &edges[0]);
         let area2 = norm(&raw);
         let has_area = area2 > T::zero() && area2.is_finite();
-        // One quotient for the normal and the shape: the unit normal's
-        // components carry `2u` more than a division each would.
-        let inverse = T::one() / &area2;
-        let normal = has_area.then(|| raw * inverse.clone());
+        // As `normalize(&raw)`, without taking the norm twice. (A product by
+        // one reciprocal would save two quotients, but its extra `2u` per
+        // component flipped a tie between two walls in the lab's
+        // `linahan-nan-narrow-slot-diagonal` case, in `f32` and `Mpfr<24>`.)
+        let normal = has_area.then(|| raw.map(|x| x / &area2));
         let longest = edges.iter().map(norm_squared).fold(T::zero(), |m, x| m.max(x));
-        let shape = if has_area { longest * inverse } else { T::c(f64::INFINITY) };
+        let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
         Candidate { index, triangle, active, normal, lo, hi, edges, shape }
     }
 
