@@ -35,7 +35,7 @@ impl<T: Real> Ellipsoid<T> {
                 return Err(Error::InvalidRadius { axis, value: r });
             }
         }
-        Self::from_radii(converted)
+        Ok(Self::checked(converted))
     }
 
     /// An ellipsoid with radii already in backend `T`.
@@ -49,8 +49,13 @@ impl<T: Real> Ellipsoid<T> {
                 return Err(Error::InvalidRadius { axis, value: r.to_f64() });
             }
         }
+        Ok(Self::checked(radii))
+    }
+
+    /// The ellipsoid of radii already found [`usable`].
+    fn checked(radii: Vec3<T>) -> Self {
         let inverse = radii.map(|r| T::one() / &r);
-        Ok(Ellipsoid { radii, inverse })
+        Ellipsoid { radii, inverse }
     }
 
     /// A sphere of radius `r`.
@@ -71,12 +76,6 @@ impl<T: Real> Ellipsoid<T> {
     #[must_use]
     pub fn is_sphere(&self) -> bool {
         self.radii.x == self.radii.y && self.radii.y == self.radii.z
-    }
-
-    /// The inverse radii `1 / radii`, rounded.
-    #[must_use]
-    pub fn inverse_radii(&self) -> &Vec3<T> {
-        &self.inverse
     }
 
     /// World space to eSpace: multiplies each coordinate by its rounded
