@@ -309,30 +309,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
     // Face interior: the plane reached with the contact point inside.
-    let face_hit = || {
-        let n = normal.as_ref()?;
-        let nv = dot(n, vel);
-        if !(nv < zero && plane_dist > one) {
-            return None;
-        }
-        let t = (plane_dist.clone() - &one) / -nv;
-        if !wins(&t) {
-            return None;
-        }
-        let contact = vel * t.clone() - n;
-        // Orientation against the triangle's own winding normal (not the
-        // side-flipped `n`), so back faces are found too.
-        let winding = c.normal.as_ref().unwrap_or(n);
-        let inside = (0..3).all(|i| dot(&cross(&edges[i], &(&contact - p[i])), winding) >= zero);
-        inside.then(|| Hit {
-            t,
-            point: contact + base,
-            normal: n.clone(),
-            feature: Feature::Face,
-            triangle: index,
-            started_overlapping: false,
-        })
-    };
+    let face_hit = || face_contact(c, p, normal.as_ref()?, &plane_dist, base, vel, &wins);
     // Clear of the plane by more than the margin, the body cannot be
     // touching anything now: a face hit needs no closest point.
     if plane_dist > clear
@@ -456,6 +433,47 @@ pub(crate) fn sweep_robust_within<T: Real>(
         }
     }
     Some(best?.into_hit(Some(base), &face_normal, index, false))
+}
+
+/// The robust test's face contact: the unit sphere at the origin (the
+/// sweep's start, `p` the vertices relative to it) moving by `vel` reaches
+/// the plane at distance `plane_dist` along `-n` (`n` turned towards the
+/// centre) with the contact point inside the triangle, at a time that
+/// `wins`. (A function, not a closure: the robust test tries it in two
+/// places, before the closest point for a body clear of the plane and after
+/// it otherwise, and a closure's captures cost more than its arguments.)
+#[inline]
+fn face_contact<T: Real>(
+    c: &Candidate<T>,
+    p: [&Vec3<T>; 3],
+    n: &Vec3<T>,
+    plane_dist: &T,
+    base: &Vec3<T>,
+    vel: &Vec3<T>,
+    wins: &impl Fn(&T) -> bool,
+) -> Option<Hit<T>> {
+    let (zero, one) = (T::zero(), T::one());
+    let nv = dot(n, vel);
+    if !(nv < zero && *plane_dist > one) {
+        return None;
+    }
+    let t = (plane_dist.clone() - &one) / -nv;
+    if !wins(&t) {
+        return None;
+    }
+    let contact = vel * t.clone() - n;
+    // Orientation against the triangle's own winding normal (not the
+    // side-flipped `n`), so back faces are found too.
+    let winding = c.normal.as_ref().unwrap_or(n);
+    let inside = (0..3).all(|i| dot(&cross(&c.edges[i], &(&contact - p[i])), winding) >= zero);
+    inside.then(|| Hit {
+        t,
+        point: contact + base,
+        normal: n.clone(),
+        feature: Feature::Face,
+        triangle: c.index,
+        started_overlapping: false,
+    })
 }
 
 /// A candidate seen from the sphere's centre: its vertices relative to the
