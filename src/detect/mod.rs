@@ -72,11 +72,20 @@ pub struct DetectOptions {
     /// input magnitude, see [`sweep_robust`]); default 16. A sphere whose
     /// closest distance is within `1 +- tol` counts as touching at `t = 0`.
     pub touch_ulps: f64,
+    /// How much a sweep that starts touching a triangle (within the
+    /// touching tolerance, not overlapping it) must approach it to meet it at
+    /// `t = 0`, in units of `u * |vel|`: the contact is met only when
+    /// `-sep . vel > approach_ulps * u * |vel|` (`sep` its separating
+    /// direction). Default 0: any approach. The robust response's push-outs
+    /// use its [`crate::respond::RobustOptions::feasible_ulps`], so that a
+    /// push along a wall the body touches is not stopped by the rounding of
+    /// that wall's direction.
+    pub approach_ulps: f64,
 }
 
 impl Default for DetectOptions {
     fn default() -> Self {
-        DetectOptions { two_sided: true, touch_ulps: 16.0 }
+        DetectOptions { two_sided: true, touch_ulps: 16.0, approach_ulps: 0.0 }
     }
 }
 

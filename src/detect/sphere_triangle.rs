@@ -152,9 +152,13 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   origin the scene lies.
 /// * A sphere that already touches or overlaps the triangle at `t = 0`
 ///   (closest distance `<= 1 + tol`) is reported at `t = 0` with the
-///   separating normal (closest point to centre) if and only if the motion
-///   approaches that point; otherwise the distance to the (convex) triangle
-///   cannot decrease along the motion and there is no hit. The exit time is
+///   separating normal `sep` (closest point to centre) if and only if the
+///   motion approaches that point: `-sep . vel > 0` when overlapping
+///   (`dist < 1 - tol`), `-sep . vel > opts.approach_ulps * u * |vel|` when
+///   touching (default 0; see [`DetectOptions::approach_ulps`]). Otherwise
+///   there is no hit: the distance to the (convex) triangle is convex along
+///   the motion, so it does not decrease (or, with `approach_ulps`, by at
+///   most `approach_ulps * u * |vel|` over the sweep). The exit time is
 ///   never reported.
 /// * Face: plane distance taken from the vertex nearest the centre; the
 ///   contact point is inside when all three edge orientations are
@@ -345,8 +349,16 @@ pub(crate) fn sweep_robust_within<T: Real>(
         let local = Local { p, edges, active, face: normal.as_ref(), plane_dist: &plane_dist, nearest };
         let (dist, sep, tol) = local.separation(&closest, feature, &face_normal, opts);
         if dist <= one.clone() + &tol {
-            if dot(&sep, vel) < zero && wins(&zero) {
-                let overlapping = dist < one - &tol;
+            // Touching: approached by more than `opts.approach_ulps`;
+            // overlapping: by any amount.
+            let overlapping = dist < one.clone() - &tol;
+            let approach = -dot(&sep, vel);
+            let approached = if overlapping {
+                approach > zero
+            } else {
+                approach > T::c(opts.approach_ulps * T::unit_roundoff()) * &swept.speed
+            };
+            if approached && wins(&zero) {
                 return Some(Hit {
                     t: zero,
                     point: closest + base,

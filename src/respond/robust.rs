@@ -59,7 +59,7 @@
 
 use super::{Frame, StopReason};
 use crate::Real;
-use crate::detect::{Detection, Hit, proximity};
+use crate::detect::{DetectOptions, Detection, Hit, proximity};
 use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
 
 /// The robust response's tolerances. Distances are eSpace units (radius 1);
@@ -237,10 +237,24 @@ fn meet_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, w: &Vec3<T>, opt
 /// and whatever lies ahead. The sweep looks `2 want + gap` ahead, further
 /// than the push, so an obstacle exactly `want` away is seen rather than
 /// lost to rounding at the end of the sweep.
-fn push_out<T: Real>(frame: &Frame<'_, T>, p: Vec3<T>, normal: &Vec3<T>, want: T, gap: &T) -> Vec3<T> {
+///
+/// The look-ahead sweep ignores a touched triangle that the push only
+/// grazes (approaching it by less than `feasible_ulps * u` of its length,
+/// [`DetectOptions::approach_ulps`]): pushed out of one wall of a corner
+/// along the next, the body must not be stopped by the rounding of that
+/// next wall's direction (fuzz finding F12).
+fn push_out<T: Real>(
+    frame: &Frame<'_, T>,
+    p: Vec3<T>,
+    normal: &Vec3<T>,
+    want: T,
+    gap: &T,
+    opts: &RobustOptions,
+) -> Vec3<T> {
     let look = T::c(2.0) * &want + gap;
     let d = normal * look.clone();
-    let delta = match frame.hood.earliest_hit(Detection::Robust, &p, &d, frame.detect) {
+    let detect = DetectOptions { approach_ulps: opts.feasible_ulps, ..frame.detect.clone() };
+    let delta = match frame.hood.earliest_hit(Detection::Robust, &p, &d, &detect) {
         None => want,
         Some(h) => {
             let room = h.t * &look;
@@ -287,7 +301,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
         p += &remaining * t_move.clone();
         let gap = (hit.t.clone() - &t_move) * approach.max(zero.clone());
         if gap < pad.clone() * T::c(0.5) {
-            p = push_out(frame, p, &hit.normal, pad - &gap, &gap);
+            p = push_out(frame, p, &hit.normal, pad - &gap, &gap, opts);
         }
         let n = hit.normal.clone();
         frame.record(hit, n.clone());
@@ -320,21 +334,37 @@ fn settle<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, opts: &RobustOptions) -
     restore_skin(frame, p, nearest, opts)
 }
 
-/// The push-out of [`settle`], given the scan's nearest triangle.
+/// How many times [`restore_skin`] pushes a body out before it lets the
+/// position stand: one per wall of a corner (a sweep can leave a body
+/// touching three mutually perpendicular walls at once, and each push
+/// moves it away from one).
+const SKIN_ROUNDS: usize = 3;
+
+/// The push-out of [`settle`], given the scan's nearest triangle: while the
+/// nearest triangle is closer than `1 + pad / 2`, push out along its
+/// separating direction ([`push_out`]) and scan again, at most
+/// [`SKIN_ROUNDS`] times; a push that cannot move the body (no room behind
+/// it) ends the rounds.
 fn restore_skin<T: Real>(
     frame: &mut Frame<'_, T>,
-    p: Vec3<T>,
-    nearest: Option<Nearest<T>>,
+    mut p: Vec3<T>,
+    mut nearest: Option<Nearest<T>>,
     opts: &RobustOptions,
 ) -> Vec3<T> {
-    let Some(nearest) = nearest else { return p };
-    let (gap, pad) = (nearest.dist - T::one(), nearest.pad);
-    if !(gap < pad.clone() * T::c(0.5)) {
-        return p;
+    for _ in 0..SKIN_ROUNDS {
+        let Some(near) = nearest else { break };
+        let (gap, pad) = (near.dist - T::one(), near.pad);
+        if !(gap < pad.clone() * T::c(0.5)) {
+            break;
+        }
+        let Some(dir) = normalize(&(&p - &near.point)) else { break };
+        let pushed = push_out(frame, p.clone(), &dir, pad - &gap, &gap.max(T::zero()), opts);
+        if pushed == p {
+            break;
+        }
+        p = pushed;
+        nearest = scan_resting(frame, &p, opts);
     }
-    let Some(dir) = normalize(&(&p - &nearest.point)) else { return p };
-    let p = push_out(frame, p, &dir, pad - &gap, &gap.max(T::zero()));
-    scan_resting(frame, &p, opts);
     p
 }
 

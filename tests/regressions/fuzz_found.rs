@@ -288,3 +288,34 @@ fn sphere_dropped_on_a_sliver_stops_on_it() {
     let worst = worst_penetration::<f32>(&soup, [0.04531583637600818; 3], start, &[frame]);
     assert!(worst <= 0.0, "penetration {worst:e}");
 }
+
+/// F12 (sixth session, `move_robust`, `f32`): a sphere pushed along the
+/// diagonal into the corner of three perpendicular walls, each wall two
+/// triangles, the six given two and a half times (coincident copies, so
+/// every wall's diagonal is an edge of four or six triangles: a real edge
+/// for the adjacency), ended one ulp (`9.3e-10`) inside two walls. The
+/// frame's sweep reaches all three walls at its very end and stops a
+/// padding short of the floor only; the slide along the floor then ends
+/// touching the other two. The skin restore pushed out of the nearest
+/// wall, along the wall beside it, but the push's own sweep reported the
+/// neighbour's diagonal edge touched and approached at `t = 0`: its
+/// rounded normal leaned `1.7e-6` towards the push. A push-out now ignores
+/// a touched triangle it only grazes (`DetectOptions::approach_ulps`), and
+/// the skin is restored wall by wall (up to three pushes).
+#[test]
+fn sphere_pushed_into_a_corner_of_coincident_walls_stays_out() {
+    let w = 0.23095639693789163;
+    let corner = [
+        [[0.0, 0.0, 0.0], [0.0, 0.0, w], [w, 0.0, w]],
+        [[0.0, 0.0, 0.0], [w, 0.0, w], [w, 0.0, 0.0]],
+        [[0.0, 0.0, 0.0], [0.0, w, 0.0], [0.0, w, w]],
+        [[0.0, 0.0, 0.0], [0.0, w, w], [0.0, 0.0, w]],
+        [[0.0, 0.0, 0.0], [w, 0.0, 0.0], [w, w, 0.0]],
+        [[0.0, 0.0, 0.0], [w, w, 0.0], [0.0, w, 0.0]],
+    ];
+    let soup: Vec<[[f64; 3]; 3]> = (0..16).map(|k| corner[k % 6]).collect();
+    let push = -0.0011547820018970507;
+    let frames = [([push; 3], [0.0; 3]); 24];
+    let worst = worst_penetration::<f32>(&soup, [0.011547819846894581; 3], [0.03464345954068374; 3], &frames);
+    assert!(worst <= 0.0, "penetration {worst:e}");
+}
