@@ -111,6 +111,11 @@ impl Triangle<f64> {
 /// returned point is then close to both, so its distance error stays of the
 /// order of `u * (|edge|^2 + |p - a|^2)`. Pass coordinates relative to a
 /// nearby origin to keep them small.
+///
+/// A triangle that is degenerate in this precision (two vertices equal,
+/// or all three collinear: a tiny triangle far from the origin in `f32`)
+/// gets a finite answer, never NaN: the vertex for a side of zero length,
+/// the nearest point of the three sides for collinear vertices.
 #[must_use]
 pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {
     let zero = T::zero();
@@ -130,7 +135,12 @@ pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Ve
     }
     let vc = d1.clone() * &d4 - d3.clone() * &d2;
     if vc <= zero && d1 >= zero && d3 <= zero {
-        let v = d1.clone() / (d1 - &d3);
+        let span = d1.clone() - &d3;
+        if !(span > zero) {
+            // `ab . ab = 0`: `b` is `a` (degenerate in this precision).
+            return (tri.a.clone(), Feature::Vertex(0));
+        }
+        let v = d1 / span;
         return (&tri.a + ab * v, Feature::Edge(0));
     }
     let cp = p - &tri.c;
@@ -141,19 +151,60 @@ pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Ve
     }
     let vb = d5.clone() * &d2 - d1 * &d6;
     if vb <= zero && d2 >= zero && d6 <= zero {
-        let w = d2.clone() / (d2 - &d6);
+        let span = d2.clone() - &d6;
+        if !(span > zero) {
+            // `ac . ac = 0`: `c` is `a`.
+            return (tri.a.clone(), Feature::Vertex(0));
+        }
+        let w = d2 / span;
         return (&tri.a + ac * w, Feature::Edge(2));
     }
     let va = d3.clone() * &d6 - d5.clone() * &d4;
     let d43 = d4 - &d3;
     let d56 = d5 - &d6;
     if va <= zero && d43 >= zero && d56 >= zero {
-        let w = d43.clone() / (d43 + &d56);
+        let span = d43.clone() + &d56;
+        if !(span > zero) {
+            // `bc . bc = 0`: `c` is `b`.
+            return (tri.b.clone(), Feature::Vertex(1));
+        }
+        let w = d43 / span;
         return (&tri.b + (&tri.c - &tri.b) * w, Feature::Edge(1));
     }
+    let area = va.clone() + &vb + &vc;
+    if !(area > zero) {
+        // Collinear vertices (degenerate in this precision): the nearest
+        // point of the three sides.
+        return degenerate_closest_point(p, tri);
+    }
     // One quotient, two products (Ericson's form).
-    let inverse = T::one() / (va + &vb + &vc);
+    let inverse = T::one() / area;
     let v = vb * &inverse;
     let w = vc * &inverse;
     (&tri.a + ab * v + ac * w, Feature::Face)
+}
+
+/// The closest point of a triangle whose vertices are collinear in this
+/// precision: the nearest of the closest points of its three sides (a side
+/// of zero length gives its vertex).
+fn degenerate_closest_point<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {
+    let ends = [(&tri.a, &tri.b), (&tri.b, &tri.c), (&tri.c, &tri.a)];
+    let mut best: Option<(T, Vec3<T>, Feature)> = None;
+    for (i, (a, b)) in ends.into_iter().enumerate() {
+        let e = b - a;
+        let e2 = dot(&e, &e);
+        let f = dot(&(p - a), &e);
+        let (point, feature) = if !(f > T::zero()) || !(e2 > T::zero()) {
+            (a.clone(), Feature::Vertex(i as u8))
+        } else if f >= e2 {
+            (b.clone(), Feature::Vertex(((i + 1) % 3) as u8))
+        } else {
+            (a + e * (f / e2), Feature::Edge(i as u8))
+        };
+        let d = norm_squared(&(p - &point));
+        if best.as_ref().is_none_or(|(bd, _, _)| d < *bd) {
+            best = Some((d, point, feature));
+        }
+    }
+    best.map_or_else(|| (tri.a.clone(), Feature::Vertex(0)), |(_, point, feature)| (point, feature))
 }

@@ -319,3 +319,36 @@ fn sphere_pushed_into_a_corner_of_coincident_walls_stays_out() {
     let worst = worst_penetration::<f32>(&soup, [0.011547819846894581; 3], [0.03464345954068374; 3], &frames);
     assert!(worst <= 0.0, "penetration {worst:e}");
 }
+
+/// F13 (sixth session, `move_robust`, `f32`): a unit sphere 1e4 from the
+/// origin touching, in the triangle's own plane, the corner of a triangle
+/// 1.2e-4 across, then pushed towards it, went 0.0098 (ten ulps) into it.
+/// In `f32` at that distance two of the triangle's vertices round to the
+/// same point, and Ericson's closest point divided zero by zero on the
+/// zero-length side: a NaN distance, so neither the touching test nor the
+/// scans saw the triangle. The closest point now returns the vertex for a
+/// side of zero length and the nearest side for collinear vertices.
+#[test]
+fn sphere_touching_a_triangle_degenerate_in_f32_does_not_enter_it() {
+    let soup = [[
+        [10008.5, 12.5, -9987.5],
+        [10008.5, 12.499999988174121, -9987.50012334651],
+        [10008.5, 12.499876653490245, -9987.499999988175],
+    ]];
+    let runs = [
+        (([-2.892762759854624e-6, 1.308427266182572e-6, 2.327797532445143e-6], [0.0; 3]), 3),
+        (([-1.0000870336685761e-14, -1.0000870336685761e-14, 0.010000870336685761], [0.0; 3]), 4),
+        (([0.0, 0.0, 0.0], [0.0; 3]), 8),
+        (([0.0, -0.1, 0.0], [0.0; 3]), 1),
+    ];
+    let frames: Vec<([f64; 3], [f64; 3])> = runs.iter().flat_map(|&(f, n)| std::iter::repeat_n(f, n)).collect();
+    let worst = worst_penetration::<f32>(&soup, [1.0; 3], [10008.5, 12.499949201322494, -9988.500053960051], &frames);
+    assert!(worst <= 0.0, "penetration {worst:e}");
+    // The closest point of the triangle as `f32` holds it (two vertices
+    // equal) is finite, and it is the repeated vertex's side.
+    let v = |p: [f64; 3]| vec3::<f32>(p[0], p[1], p[2]);
+    let tri = Triangle::new(v(soup[0][0]), v(soup[0][1]), v(soup[0][2]));
+    assert_eq!(tri.a, tri.b, "the case needs the two vertices to coincide in f32");
+    let (q, _) = sweepslide::geom::closest_point_on_triangle(&vec3::<f32>(10008.5, 12.49995, -9988.5), &tri);
+    assert!(q.iter().all(|x| x.is_finite()), "closest point {q:?}");
+}
