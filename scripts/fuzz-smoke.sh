@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
-# Builds the cargo-fuzz targets and runs each for SECONDS (default 60).
+# Builds the cargo-fuzz targets and runs each for SECONDS (default 60),
+# from libFuzzer seed FUZZ_SEED (default 1: a smoke run explores the same
+# inputs every time, so its verdict is reproducible; campaigns that look
+# for new failures run `cargo fuzz run` without a seed, docs/fuzzing.md).
 # Uses the nightly toolchain when it is installed (libFuzzer with
 # sanitizer coverage), else stable with `-s none`. A crash fails.
 set -euo pipefail
@@ -21,5 +24,5 @@ for target in $("${run[@]}" list); do
   extra=()
   [ -d "corpus/seeds/$target" ] && extra+=("corpus/seeds/$target")
   echo "--- fuzz $target for ${seconds}s"
-  "${run[@]}" run "${build_flags[@]}" "$target" "corpus/$target" "${extra[@]}" -- -max_total_time="$seconds" -print_final_stats=1
+  "${run[@]}" run "${build_flags[@]}" "$target" "corpus/$target" "${extra[@]}" -- -max_total_time="$seconds" -seed="${FUZZ_SEED:-1}" -print_final_stats=1
 done
