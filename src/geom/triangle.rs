@@ -189,8 +189,8 @@ pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Ve
 /// of zero length gives its vertex).
 fn degenerate_closest_point<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {
     let ends = [(&tri.a, &tri.b), (&tri.b, &tri.c), (&tri.c, &tri.a)];
-    let mut best: Option<(T, Vec3<T>, Feature)> = None;
-    for (i, (a, b)) in ends.into_iter().enumerate() {
+    let side = |i: usize| {
+        let (a, b) = ends[i];
         let e = b - a;
         let e2 = dot(&e, &e);
         let f = dot(&(p - a), &e);
@@ -201,10 +201,10 @@ fn degenerate_closest_point<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>
         } else {
             (a + e * (f / e2), Feature::Edge(i as u8))
         };
-        let d = norm_squared(&(p - &point));
-        if best.as_ref().is_none_or(|(bd, _, _)| d < *bd) {
-            best = Some((d, point, feature));
-        }
-    }
-    best.map_or_else(|| (tri.a.clone(), Feature::Vertex(0)), |(_, point, feature)| (point, feature))
+        (norm_squared(&(p - &point)), point, feature)
+    };
+    // The nearest side, the first on a tie.
+    let (_, point, feature) =
+        [side(1), side(2)].into_iter().fold(side(0), |best, s| if s.0 < best.0 { s } else { best });
+    (point, feature)
 }
