@@ -45,11 +45,13 @@
 //! contacts, which also restores the skin (a body left closer than
 //! `1 + pad / 2` to a triangle is pushed out to `1 + pad`).
 //!
-//! Padding: `pad = padding_ulps * u * s + position_ulps * u * |start|`,
+//! Padding: `pad = padding_ulps * u * s * max(1, k / 4) + position_ulps * u * |start|`,
 //! capped at `max_padding`, where `u` is the unit roundoff, `s` the
 //! magnitude of the relative coordinates the contact was computed from (the
 //! distance to the triangle's nearest vertex and the displacement, at least
-//! one) and `|start|` the largest eSpace coordinate of the frame's start
+//! one), `k` the triangle's shape factor (a sliver's distance is off by
+//! about `u k s`; `k <= 4` for any triangle with angles between 20 and
+//! 120 degrees) and `|start|` the largest eSpace coordinate of the frame's start
 //! (which bounds the rounding of the final `start + displacement`). In `f32`
 //! at the origin that is about `3e-6`, in `f64` about `5e-15`, at `1e5` in
 //! `f32` about `0.024` (eSpace units).
@@ -59,8 +61,9 @@
 
 use super::{Frame, StopReason};
 use crate::Real;
-use crate::detect::{DetectOptions, Detection, Hit, proximity};
+use crate::detect::{Candidate, DetectOptions, Detection, Hit, proximity};
 use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
+use std::borrow::Cow;
 
 /// The robust response's tolerances. Distances are eSpace units (radius 1);
 /// `*_ulps` fields are multiples of the backend's unit roundoff `u`.
@@ -70,7 +73,8 @@ pub struct RobustOptions {
     /// Sweeps per pass at most (default 8).
     pub max_iterations: u32,
     /// Padding per unit of `u * s` (detection rounding; default 48, three
-    /// times the detection's touching tolerance).
+    /// times the detection's touching tolerance), times `k / 4` for a
+    /// sliver of shape factor `k > 4`.
     pub padding_ulps: f64,
     /// Padding per unit of `u * |start|` (final-position rounding; default 4).
     pub position_ulps: f64,
@@ -106,25 +110,40 @@ fn magnitude<T: Real>(v: &Vec3<T>) -> f64 {
     v.iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
 }
 
-/// The padding for a contact on `tri` at position `p` (see the module
-/// docs): `s` is the larger of 1, the displacement and the distance from
-/// `p` to the triangle's nearest vertex, the magnitudes that the contact's
-/// distance was computed from.
-fn padding<T: Real>(start_magnitude: f64, p: &Vec3<T>, w: &Vec3<T>, tri: &Triangle<T>, opts: &RobustOptions) -> T {
+/// Shape factors up to this leave the padding as it is (a triangle whose
+/// angles all lie between 20 and 120 degrees); a sliver's padding
+/// grows in proportion to its shape factor beyond it.
+const SHAPE_FREE: f64 = 4.0;
+
+/// The padding for a contact on candidate `c` at position `p` (see the
+/// module docs): `s` is the larger of 1, the displacement and the distance
+/// from `p` to the triangle's nearest vertex, the magnitudes that the
+/// contact's distance was computed from; a sliver's padding is multiplied
+/// by `k / SHAPE_FREE` (`k` its shape factor), because its unit normal's
+/// direction and its closest point carry errors of order `u k`, so the
+/// distance to it is off by `u k s` (fuzz finding F14). A triangle
+/// degenerate in this precision (no normal; closest points on its sides)
+/// keeps the plain padding.
+fn padding<T: Real>(start_magnitude: f64, p: &Vec3<T>, w: &Vec3<T>, c: &Candidate<T>, opts: &RobustOptions) -> T {
     let u = T::unit_roundoff();
+    let tri = &c.triangle;
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
     let s = magnitude(w).max(nearest).max(1.0);
-    T::c((opts.padding_ulps * u * s + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
+    let k = c.shape.to_f64();
+    let sliver = if k.is_finite() { (k / SHAPE_FREE).max(1.0) } else { 1.0 };
+    T::c((opts.padding_ulps * u * s * sliver + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
 }
 
-/// Triangle `index` in the frame's eSpace coordinates.
-fn triangle_e<T: Real>(frame: &Frame<'_, T>, index: u32) -> Triangle<T> {
+/// Triangle `index` of the frame as a candidate in eSpace coordinates:
+/// the neighbourhood's, or one mapped from the world should it not be
+/// there.
+fn candidate_e<'a, T: Real>(frame: &'a Frame<'_, T>, index: u32) -> Cow<'a, Candidate<T>> {
     match frame.hood.triangles.binary_search_by_key(&index, |c| c.index) {
-        Ok(k) => frame.hood.triangles[k].triangle.clone(),
+        Ok(k) => Cow::Borrowed(&frame.hood.triangles[k]),
         Err(_) => {
             let w = frame.world.triangle(index);
             let to_e = |v: &Vec3<T>| frame.body.to_espace(&(v - &frame.hood.origin));
-            Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c))
+            Cow::Owned(Candidate::lone(index, Triangle::new(to_e(&w.a), to_e(&w.b), to_e(&w.c))))
         }
     }
 }
@@ -286,8 +305,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             frame.trace.stop = StopReason::Free;
             return settle(frame, p + remaining, opts);
         };
-        let tri = triangle_e(frame, hit.triangle);
-        let pad = padding(frame.start_magnitude, &p, &remaining, &tri, opts);
+        let pad = padding(frame.start_magnitude, &p, &remaining, &candidate_e(frame, hit.triangle), opts);
         // The gap to the contact along its normal now. Within the resting
         // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
         // out, so rounding cannot make it toggle between neighbouring floats.
@@ -397,7 +415,7 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
         if !(dist < reach) {
             continue;
         }
-        let pad = padding(frame.start_magnitude, p, &Vec3::zeros(), &c.triangle, opts);
+        let pad = padding(frame.start_magnitude, p, &Vec3::zeros(), c, opts);
         if dist <= one.clone() + T::c(2.0) * &pad {
             frame.resting.push(k);
         }
@@ -434,7 +452,7 @@ pub(crate) fn start<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, moving: bool,
 fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
     let one = T::one();
     for _ in 0..opts.depenetration_rounds {
-        let mut deepest: Option<(T, Vec3<T>, &Triangle<T>)> = None;
+        let mut deepest: Option<(T, Vec3<T>, &Candidate<T>)> = None;
         for c in &frame.hood.triangles {
             let tri = &c.triangle;
             // A box or plane at distance 1 or more cannot hold an overlap
@@ -445,11 +463,11 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
             let (q, _) = closest_point_on_triangle(&p, tri);
             let dist = norm(&(&p - &q));
             if dist < one && deepest.as_ref().is_none_or(|d| dist < d.0) {
-                deepest = Some((dist, q, tri));
+                deepest = Some((dist, q, c));
             }
         }
-        let Some((dist, q, tri)) = deepest else { break };
-        let tri = tri.clone();
+        let Some((dist, q, c)) = deepest else { break };
+        let tri = &c.triangle;
         let Some(front) = normalize(&tri.unnormalized_normal()) else { break };
         let side = dot(&front, &(&p - &tri.a));
         let tiny = T::c(opts.feasible_ulps * T::unit_roundoff());
@@ -460,7 +478,7 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
         } else {
             (front, one.clone())
         };
-        let pad = padding(frame.start_magnitude, &p, &Vec3::zeros(), &tri, opts);
+        let pad = padding(frame.start_magnitude, &p, &Vec3::zeros(), c, opts);
         let push = depth + &pad;
         frame.trace.depenetration += push.to_f64();
         p += dir * push;

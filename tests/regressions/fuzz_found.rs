@@ -352,3 +352,36 @@ fn sphere_touching_a_triangle_degenerate_in_f32_does_not_enter_it() {
     let (q, _) = sweepslide::geom::closest_point_on_triangle(&vec3::<f32>(10008.5, 12.49995, -9988.5), &tri);
     assert!(q.iter().all(|x| x.is_finite()), "closest point {q:?}");
 }
+
+/// F14 (sixth session, `move_robust`, `f64`): a unit sphere pushed along
+/// the diagonal into a corner of three walls, beside a sliver 4e5 long and
+/// about 20 wide whose vertices lie 1e5 to 3e5 from the corner and whose
+/// face passes through it, ended `1.65e-9` inside the sliver. Its shape
+/// factor is about 4e4: its unit normal's direction carries errors of
+/// order `u k`, so the distance to its face, taken 1e5 from its nearest
+/// vertex, is off by far more than the `48 u s` padding. A sliver's padding
+/// now grows with its shape factor.
+#[test]
+fn sphere_in_a_corner_beside_a_huge_sliver_stays_out_of_it() {
+    let sliver = [
+        [-10387.815287468866, 11049.14255500502, -98843.56929762149],
+        [10388.065287468866, -11047.39255500502, 98843.31929762149],
+        [31165.28540304539, -33124.08102150186, 296532.285480922],
+    ];
+    let soup = [
+        [[0.0, 0.0, 0.0], [0.0, 0.0, 20.0], [20.0, 0.0, 20.0]],
+        [[0.0, 0.0, 0.0], [20.0, 0.0, 20.0], [20.0, 0.0, 0.0]],
+        [[0.0, 0.0, 0.0], [0.0, 20.0, 0.0], [0.0, 20.0, 20.0]],
+        [[0.0, 0.0, 0.0], [0.0, 20.0, 20.0], [0.0, 0.0, 20.0]],
+        [[0.0, 0.0, 0.0], [20.0, 0.0, 0.0], [20.0, 20.0, 0.0]],
+        [[0.0, 0.0, 0.0], [20.0, 20.0, 0.0], [0.0, 20.0, 0.0]],
+        sliver,
+    ];
+    let push = -0.10000000149011612;
+    let frames = [([push; 3], [0.0; 3]); 24];
+    let worst = worst_penetration::<f64>(&soup, [1.0; 3], [3.0; 3], &frames);
+    assert!(worst <= 0.0, "penetration {worst:e}");
+    let v = |p: [f64; 3]| vec3::<f64>(p[0], p[1], p[2]);
+    let shape = Candidate::lone(0, Triangle::new(v(sliver[0]), v(sliver[1]), v(sliver[2]))).shape;
+    assert!(shape > 1e4, "the case needs a sliver: shape factor {shape:e}");
+}
