@@ -357,6 +357,37 @@ macro_rules! both {
     )*};
 }
 
+/// A candidate's normal is the front normal `(b - a) x (c - a)` whichever
+/// edge is the longest (it is computed from the other two), and its tilt
+/// factor is `1 / sin` of the largest angle: exactly 1 for a right
+/// triangle, `2 / sqrt(3)` for an equilateral one, large for a flat cap.
+fn candidate_normal_and_tilt<T: Real>() {
+    let v = |x: [f64; 3]| vec3::<T>(x[0], x[1], x[2]);
+    // The tilt is computed in `f64`.
+    let u = T::unit_roundoff().max(f64::EPSILON);
+    // A right triangle in z = 0 (front +z), its hypotenuse rotated through
+    // the three edge positions, and a cap whose apex angle is 2 atan(8):
+    // both with front normal +z.
+    let right = [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
+    let cap = [[-8.0, 0.0, 0.0], [8.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    for tri in [right, cap] {
+        for r in 0..3 {
+            let t = Triangle::new(v(tri[r]), v(tri[(r + 1) % 3]), v(tri[(r + 2) % 3]));
+            let n = Candidate::lone(0, t).normal.expect("a triangle with area");
+            assert_eq!(show(&n), [0.0, 0.0, 1.0], "rotation {r} of {tri:?}");
+        }
+    }
+    let tilt = |tri: [[f64; 3]; 3]| Candidate::lone(0, Triangle::new(v(tri[0]), v(tri[1]), v(tri[2]))).tilt();
+    assert_eq!(tilt(right), 1.0);
+    let equilateral = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 3f64.sqrt(), 0.0]];
+    assert!((tilt(equilateral) - 2.0 / 3f64.sqrt()).abs() < 16.0 * u, "{}", tilt(equilateral));
+    // 1 / sin(2 atan 8) = (1 + 64) / 16.
+    assert!((tilt(cap) - 65.0 / 16.0).abs() < 16.0 * u * 4.0, "{}", tilt(cap));
+    // Degenerate in this precision: no normal, no finite tilt.
+    let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+    assert!(!tilt(flat).is_finite());
+}
+
 /// One module per backend, each with the whole suite.
 macro_rules! suite {
     ($module:ident, $t:ty) => {
@@ -397,6 +428,11 @@ macro_rules! suite {
             #[test]
             fn world_rejects_non_finite() {
                 super::world_rejects_non_finite::<B>();
+            }
+
+            #[test]
+            fn candidate_normal_and_tilt() {
+                super::candidate_normal_and_tilt::<B>();
             }
         }
     };

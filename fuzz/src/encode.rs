@@ -27,7 +27,7 @@ pub fn to_bytes<E: Encode>(x: &E) -> Vec<u8> {
 /// Encodes variant `index` of an enum with `count` variants: the smallest
 /// `u32` `x` with `(x * count) >> 32 == index`.
 pub fn variant(out: &mut Vec<u8>, index: u64, count: u64) {
-    let x = ((index << 32) + count - 1) / count;
+    let x = (index << 32).div_ceil(count);
     out.extend_from_slice(&(x as u32).to_le_bytes());
 }
 

@@ -66,7 +66,7 @@ pub fn record(
         let mut guard = RECORDS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let records = guard.get_or_insert_with(HashMap::new);
         match records.get(&class) {
-            Some(&best) if !(depth > best) => return false,
+            Some(&best) if depth.partial_cmp(&best) != Some(std::cmp::Ordering::Greater) => return false,
             _ => {
                 records.insert(class.clone(), depth);
             }

@@ -533,14 +533,16 @@ pub struct Prepared<T: Real> {
 
 /// Whether the padding the robust response computes stays below its cap
 /// for every frame of `case` in `T`:
-/// `position_ulps u P + padding_ulps u S <= max_padding` (defaults 4, 48
-/// and 0.01; `src/respond/robust.rs`) with, in eSpace (coordinates divided
-/// by the radii), `P` the largest coordinate any frame can start from
-/// (`|start|` plus the total travel) and `S` the largest distance from there
-/// to a vertex, or of a displacement, at least 1. Where the cap binds (in
-/// `f32`, `P` beyond about `4e4` radii or `S` beyond about `3e3` radii),
-/// the padding no longer covers the rounding the response itself says it
-/// must cover, and non-penetration is not claimed.
+/// `position_ulps u P + padding_ulps u S f <= max_padding` (defaults 4, 48
+/// and 0.01; `src/respond/robust.rs`) for every triangle, with, in eSpace
+/// (coordinates divided by the radii), `P` the largest coordinate any frame
+/// can start from (`|start|` plus the total travel), `S` the largest
+/// distance from there to one of the triangle's vertices, or of a
+/// displacement, at least 1, and `f` its tilt factor
+/// ([`RobustOptions::tilt_factor`], from its normal's tilt in `T`). Where
+/// the cap binds (in `f32`, `P` beyond about `4e4` radii or `S f` beyond
+/// about `3e3` radii), the padding no longer covers the rounding the
+/// response itself says it must cover, and non-penetration is not claimed.
 #[must_use]
 pub fn padding_in_range<T: Real>(case: &MoveCase) -> bool {
     let opts = RobustOptions::default();
@@ -548,27 +550,44 @@ pub fn padding_in_range<T: Real>(case: &MoveCase) -> bool {
     let e = |v: &[f64; 3]| (0..3).map(|i| (v[i] / case.radii[i]).abs()).fold(0.0, f64::max);
     let travel: f64 = case.frames.iter().map(|f| e(&f.velocity) + f.gravity.as_ref().map_or(0.0, e)).sum();
     let reach = e(&case.start) + travel;
-    let far = case
-        .triangles
-        .iter()
-        .flatten()
-        .map(|v| e(&[v[0] - case.start[0], v[1] - case.start[1], v[2] - case.start[2]]))
-        .fold(0.0, f64::max);
-    let s = (far + travel).max(1.0);
-    opts.position_ulps * u * reach + opts.padding_ulps * u * s <= opts.max_padding
+    let worst = espace_triangles(case).fold(travel.max(1.0), |worst, tri| {
+        let far = [&tri.a, &tri.b, &tri.c].iter().map(|v| v.amax()).fold(0.0, f64::max);
+        worst.max((far + travel).max(1.0) * tilt_factor::<T>(&opts, &tri))
+    });
+    opts.position_ulps * u * reach + opts.padding_ulps * u * worst <= opts.max_padding
+}
+
+/// The triangles of `case` in eSpace relative to its start, in `f64`.
+fn espace_triangles(case: &MoveCase) -> impl Iterator<Item = Triangle<f64>> + '_ {
+    let e = |v: &[f64; 3]| {
+        vec3::<f64>(
+            (v[0] - case.start[0]) / case.radii[0],
+            (v[1] - case.start[1]) / case.radii[1],
+            (v[2] - case.start[2]) / case.radii[2],
+        )
+    };
+    case.triangles.iter().map(move |t| Triangle::new(e(&t[0]), e(&t[1]), e(&t[2])))
+}
+
+/// The robust response's padding factor for `tri` (eSpace, relative to
+/// the start), from its normal's tilt computed in `T` as the response
+/// computes it ([`Candidate::tilt`]).
+fn tilt_factor<T: Real>(opts: &RobustOptions, tri: &Triangle<f64>) -> f64 {
+    let t = |v: &Vec3<f64>| vec3::<T>(v.x, v.y, v.z);
+    opts.tilt_factor(Candidate::lone(0, Triangle::new(t(&tri.a), t(&tri.b), t(&tri.c))).tilt())
 }
 
 /// The robust padding at the start, in eSpace units, for a contact on
 /// the triangle `tri` (eSpace, relative to the start): as the response
 /// computes it (`src/respond/robust.rs`, `padding`), with `s` the larger of
-/// 1 and the distance to the triangle's nearest vertex (largest coordinate),
-/// and the `position_ulps u |start|` term; capped.
+/// 1 and the distance to the triangle's nearest vertex (largest coordinate)
+/// times its tilt factor, and the `position_ulps u |start|` term; capped.
 fn start_skin<T: Real>(case: &MoveCase, tri: &Triangle<f64>) -> f64 {
     let opts = RobustOptions::default();
     let u = T::unit_roundoff();
     let e = (0..3).map(|i| (case.start[i] / case.radii[i]).abs()).fold(0.0, f64::max);
     let s = [&tri.a, &tri.b, &tri.c].iter().map(|v| v.amax()).fold(f64::INFINITY, f64::min).max(1.0);
-    (opts.padding_ulps * u * s + opts.position_ulps * u * e).min(opts.max_padding)
+    (opts.padding_ulps * u * s * tilt_factor::<T>(&opts, tri) + opts.position_ulps * u * e).min(opts.max_padding)
 }
 
 /// Whether the start lies within the padding skin (the padding the response
@@ -577,19 +596,9 @@ fn start_skin<T: Real>(case: &MoveCase, tri: &Triangle<f64>) -> f64 {
 /// eSpace and `f64` (a classification of the input, not a measurement: a
 /// triangle within rounding of the skin's edge may fall either way).
 fn squeezed<T: Real>(case: &MoveCase) -> bool {
-    let e = |v: &[f64; 3]| {
-        vec3::<f64>(
-            (v[0] - case.start[0]) / case.radii[0],
-            (v[1] - case.start[1]) / case.radii[1],
-            (v[2] - case.start[2]) / case.radii[2],
-        )
-    };
     let centre = Vec3::<f64>::zeros();
-    let directions: Vec<Vec3<f64>> = case
-        .triangles
-        .iter()
-        .filter_map(|t| {
-            let tri = Triangle::new(e(&t[0]), e(&t[1]), e(&t[2]));
+    let directions: Vec<Vec3<f64>> = espace_triangles(case)
+        .filter_map(|tri| {
             let (q, _) = closest_point_on_triangle(&centre, &tri);
             let d = centre - q;
             (d.norm() < 1.0 + start_skin::<T>(case, &tri)).then_some(d)

@@ -138,8 +138,14 @@ pub struct Candidate<T: Real> {
     /// Its active edges and vertices ([`ActiveFeatures::ALL`] for a lone
     /// triangle).
     pub active: ActiveFeatures,
-    /// Unit front normal `normalize((b - a) x (c - a))`, `None` if the
-    /// triangle is degenerate in this precision.
+    /// Unit front normal, the direction of `(b - a) x (c - a)`, computed as
+    /// the cross product of the two shorter edges (those meeting at the
+    /// largest angle), `None` if the triangle is degenerate in this
+    /// precision. Each edge is rounded by `u` of its length, which tilts the
+    /// product by about `u |e_i| |e_j| / |e_i x e_j|`: for the two shorter
+    /// edges that is `1 / sin` of the largest angle ([`Candidate::tilt`]),
+    /// about 1 for any triangle but a flat cap (an obtuse sliver), whereas a
+    /// pair with the longest edge of a needle would give its shape factor.
     pub normal: Option<Vec3<T>>,
     /// Lower corner of its box.
     pub lo: Vec3<T>,
@@ -172,8 +178,17 @@ impl<T: Real> Candidate<T> {
     fn with_bounds(index: u32, triangle: Triangle<T>, active: ActiveFeatures, lo: Vec3<T>, hi: Vec3<T>) -> Self {
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
         let edges = [b - a, c - b, a - c];
-        // `(b - a) x (c - a)`, bit for bit (`c - a` is `-(a - c)` exactly).
-        let raw = cross(&edges[2], &edges[0]);
+        let [l0, l1, l2] = [0, 1, 2].map(|i| norm_squared(&edges[i]));
+        // The two edges after the longest, in cyclic order: their cross
+        // product is `(b - a) x (c - a)` in exact arithmetic.
+        let m = if l0 >= l1 && l0 >= l2 {
+            0
+        } else if l1 >= l2 {
+            1
+        } else {
+            2
+        };
+        let raw = cross(&edges[(m + 1) % 3], &edges[(m + 2) % 3]);
         let area2 = norm(&raw);
         let has_area = area2 > T::zero() && area2.is_finite();
         // As `normalize(&raw)`, without taking the norm twice. (A product by
@@ -181,9 +196,23 @@ impl<T: Real> Candidate<T> {
         // component flipped a tie between two walls in the lab's
         // `linahan-nan-narrow-slot-diagonal` case, in `f32` and `Mpfr<24>`.)
         let normal = has_area.then(|| raw.map(|x| x / &area2));
-        let longest = edges.iter().map(norm_squared).fold(T::zero(), |m, x| m.max(x));
+        let longest = [l0, l1, l2].into_iter().fold(T::zero(), |m, x| m.max(x));
         let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
         Candidate { index, triangle, active, normal, lo, hi, edges, shape }
+    }
+
+    /// The tilt factor of [`Candidate::normal`]: `|e_i| |e_j| / |e_i x e_j|`
+    /// for the two shorter edges, `1 / sin` of the largest angle (1 for a
+    /// right triangle, `2 / sqrt(3)` for an equilateral one, large only
+    /// for a flat cap; infinite when degenerate), in `f64`: the unit
+    /// normal's direction is off by a few `u` times this, and so is a
+    /// distance to the plane per unit of lever arm.
+    #[must_use]
+    pub fn tilt(&self) -> f64 {
+        let mut l = self.edges.clone().map(|e| norm_squared(&e).to_f64());
+        l.sort_by(f64::total_cmp);
+        // `shape = l[2] / |e_i x e_j|`.
+        (l[0] * l[1]).sqrt() * self.shape.to_f64() / l[2]
     }
 
     /// The squared distance from `p` to this candidate's box (zero inside):

@@ -45,13 +45,15 @@
 //! contacts, which also restores the skin (a body left closer than
 //! `1 + pad / 2` to a triangle is pushed out to `1 + pad`).
 //!
-//! Padding: `pad = padding_ulps * u * s * max(1, k / 4) + position_ulps * u * |start|`,
+//! Padding: `pad = padding_ulps * u * s * max(1, g / free_tilt) + position_ulps * u * |start|`,
 //! capped at `max_padding`, where `u` is the unit roundoff, `s` the
 //! magnitude of the relative coordinates the contact was computed from (the
 //! distance to the triangle's nearest vertex and the displacement, at least
-//! one), `k` the triangle's shape factor (a sliver's distance is off by
-//! about `u k s`; `k <= 4` for any triangle with angles between 20 and
-//! 120 degrees) and `|start|` the largest eSpace coordinate of the frame's start
+//! one), `g` the tilt factor of the triangle's unit normal
+//! ([`Candidate::tilt`]: `1 / sin` of its largest angle, so a flat cap's
+//! distance is off by about `u g s`; `g <= 2` for any triangle whose
+//! largest angle is at most 150 degrees) and `|start|` the largest eSpace
+//! coordinate of the frame's start
 //! (which bounds the rounding of the final `start + displacement`). In `f32`
 //! at the origin that is about `3e-6`, in `f64` about `5e-15`, at `1e5` in
 //! `f32` about `0.024` (eSpace units).
@@ -73,9 +75,14 @@ pub struct RobustOptions {
     /// Sweeps per pass at most (default 8).
     pub max_iterations: u32,
     /// Padding per unit of `u * s` (detection rounding; default 48, three
-    /// times the detection's touching tolerance), times `k / 4` for a
-    /// sliver of shape factor `k > 4`.
+    /// times the detection's touching tolerance), times `g / free_tilt`
+    /// for a triangle whose normal's tilt factor `g` exceeds `free_tilt`.
     pub padding_ulps: f64,
+    /// The tilt factor `g` of a triangle's unit normal
+    /// ([`Candidate::tilt`], `1 / sin` of its largest angle) beyond which
+    /// its padding grows in proportion to `g` (default 2: every triangle
+    /// whose largest angle is at most 150 degrees keeps the plain padding).
+    pub free_tilt: f64,
     /// Padding per unit of `u * |start|` (final-position rounding; default 4).
     pub position_ulps: f64,
     /// Upper bound of the padding (default 0.01), reached only at very low
@@ -96,6 +103,7 @@ impl Default for RobustOptions {
         RobustOptions {
             max_iterations: 8,
             padding_ulps: 48.0,
+            free_tilt: 2.0,
             position_ulps: 4.0,
             max_padding: 0.01,
             parallel_ulps: 1024.0,
@@ -105,33 +113,39 @@ impl Default for RobustOptions {
     }
 }
 
+impl RobustOptions {
+    /// What the padding of a triangle whose normal has tilt factor `tilt`
+    /// ([`Candidate::tilt`]) is multiplied by: `max(1, tilt / free_tilt)`,
+    /// and 1 for a triangle degenerate in the working precision (`tilt`
+    /// infinite or NaN: no normal, distances to its sides only).
+    #[must_use]
+    pub fn tilt_factor(&self, tilt: f64) -> f64 {
+        if tilt.is_finite() { (tilt / self.free_tilt).max(1.0) } else { 1.0 }
+    }
+}
+
 /// The largest absolute coordinate of a vector, in `f64`.
 fn magnitude<T: Real>(v: &Vec3<T>) -> f64 {
     v.iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
 }
 
-/// Shape factors up to this leave the padding as it is (a triangle whose
-/// angles all lie between 20 and 120 degrees); a sliver's padding
-/// grows in proportion to its shape factor beyond it.
-const SHAPE_FREE: f64 = 4.0;
-
 /// The padding for a contact on candidate `c` at position `p` (see the
 /// module docs): `s` is the larger of 1, the displacement and the distance
 /// from `p` to the triangle's nearest vertex, the magnitudes that the
-/// contact's distance was computed from; a sliver's padding is multiplied
-/// by `k / SHAPE_FREE` (`k` its shape factor), because its unit normal's
-/// direction and its closest point carry errors of order `u k`, so the
-/// distance to it is off by `u k s` (fuzz finding F14). A triangle
-/// degenerate in this precision (no normal; closest points on its sides)
-/// keeps the plain padding.
+/// contact's distance was computed from; a flat cap's padding is multiplied
+/// by its normal's tilt factor over `free_tilt`
+/// ([`RobustOptions::tilt_factor`]), because its unit normal's direction
+/// carries errors of a few `u` times that factor, so the distance to its
+/// plane, `s` from its nearest vertex, is off by as much times `s` (fuzz
+/// finding F14). A triangle degenerate in this precision (no normal) keeps
+/// the plain padding.
 fn padding<T: Real>(start_magnitude: f64, p: &Vec3<T>, w: &Vec3<T>, c: &Candidate<T>, opts: &RobustOptions) -> T {
     let u = T::unit_roundoff();
     let tri = &c.triangle;
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
     let s = magnitude(w).max(nearest).max(1.0);
-    let k = c.shape.to_f64();
-    let sliver = if k.is_finite() { (k / SHAPE_FREE).max(1.0) } else { 1.0 };
-    T::c((opts.padding_ulps * u * s * sliver + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
+    let tilt = opts.tilt_factor(c.tilt());
+    T::c((opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
 }
 
 /// Triangle `index` of the frame as a candidate in eSpace coordinates:

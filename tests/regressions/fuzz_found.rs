@@ -354,13 +354,16 @@ fn sphere_touching_a_triangle_degenerate_in_f32_does_not_enter_it() {
 }
 
 /// F14 (sixth session, `move_robust`, `f64`): a unit sphere pushed along
-/// the diagonal into a corner of three walls, beside a sliver 4e5 long and
-/// about 20 wide whose vertices lie 1e5 to 3e5 from the corner and whose
-/// face passes through it, ended `1.65e-9` inside the sliver. Its shape
-/// factor is about 4e4: its unit normal's direction carries errors of
-/// order `u k`, so the distance to its face, taken 1e5 from its nearest
-/// vertex, is off by far more than the `48 u s` padding. A sliver's padding
-/// now grows with its shape factor.
+/// the diagonal into a corner of three walls, beside a flat cap (edges of
+/// 2e5, 2e5 and 4e5, about 10 high) whose vertices lie 1e5 to 3e5 from the
+/// corner and whose face passes through it, ended `1.65e-9` inside the cap.
+/// Its unit normal, the cross product of two of its edges (4e5 and 2e5
+/// long), tilted by a few `u` times `|e_i| |e_j| / |e_i x e_j|` (2e4), so
+/// the distance to its face, taken 1e5 from its nearest vertex, was off by
+/// more than the `48 u s` padding. The normal now comes from the two
+/// shorter edges (a factor of 1e4, `1 / sin` of the largest angle:
+/// [`Candidate::tilt`]) and the padding grows with that factor; either
+/// change alone passes this case.
 #[test]
 fn sphere_in_a_corner_beside_a_huge_sliver_stays_out_of_it() {
     let sliver = [
@@ -382,6 +385,6 @@ fn sphere_in_a_corner_beside_a_huge_sliver_stays_out_of_it() {
     let worst = worst_penetration::<f64>(&soup, [1.0; 3], [3.0; 3], &frames);
     assert!(worst <= 0.0, "penetration {worst:e}");
     let v = |p: [f64; 3]| vec3::<f64>(p[0], p[1], p[2]);
-    let shape = Candidate::lone(0, Triangle::new(v(sliver[0]), v(sliver[1]), v(sliver[2]))).shape;
-    assert!(shape > 1e4, "the case needs a sliver: shape factor {shape:e}");
+    let tilt = Candidate::lone(0, Triangle::new(v(sliver[0]), v(sliver[1]), v(sliver[2]))).tilt();
+    assert!(tilt > 1e3, "the case needs a flat cap: tilt factor {tilt:e}");
 }
