@@ -178,17 +178,16 @@ impl<T: Real> Candidate<T> {
     fn with_bounds(index: u32, triangle: Triangle<T>, active: ActiveFeatures, lo: Vec3<T>, hi: Vec3<T>) -> Self {
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
         let edges = [b - a, c - b, a - c];
-        let [l0, l1, l2] = [0, 1, 2].map(|i| norm_squared(&edges[i]));
+        let [l0, l1, l2] = [norm_squared(&edges[0]), norm_squared(&edges[1]), norm_squared(&edges[2])];
         // The two edges after the longest, in cyclic order: their cross
         // product is `(b - a) x (c - a)` in exact arithmetic.
-        let m = if l0 >= l1 && l0 >= l2 {
-            0
+        let (raw, longest) = if l0 >= l1 && l0 >= l2 {
+            (cross(&edges[1], &edges[2]), l0)
         } else if l1 >= l2 {
-            1
+            (cross(&edges[2], &edges[0]), l1)
         } else {
-            2
+            (cross(&edges[0], &edges[1]), l2)
         };
-        let raw = cross(&edges[(m + 1) % 3], &edges[(m + 2) % 3]);
         let area2 = norm(&raw);
         let has_area = area2 > T::zero() && area2.is_finite();
         // As `normalize(&raw)`, without taking the norm twice. (A product by
@@ -196,7 +195,6 @@ impl<T: Real> Candidate<T> {
         // component flipped a tie between two walls in the lab's
         // `linahan-nan-narrow-slot-diagonal` case, in `f32` and `Mpfr<24>`.)
         let normal = has_area.then(|| raw.map(|x| x / &area2));
-        let longest = [l0, l1, l2].into_iter().fold(T::zero(), |m, x| m.max(x));
         let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
         Candidate { index, triangle, active, normal, lo, hi, edges, shape }
     }
@@ -209,10 +207,10 @@ impl<T: Real> Candidate<T> {
     /// distance to the plane per unit of lever arm.
     #[must_use]
     pub fn tilt(&self) -> f64 {
-        let mut l = self.edges.clone().map(|e| norm_squared(&e).to_f64());
-        l.sort_by(f64::total_cmp);
-        // `shape = l[2] / |e_i x e_j|`.
-        (l[0] * l[1]).sqrt() * self.shape.to_f64() / l[2]
+        let [l0, l1, l2] = [0, 1, 2].map(|i| norm_squared(&self.edges[i]).to_f64());
+        let longest = l0.max(l1).max(l2);
+        // `|e_i|^2 |e_j|^2 = l0 l1 l2 / longest` and `shape = longest / |e_i x e_j|`.
+        (l0 * l1 * l2 / longest).sqrt() * self.shape.to_f64() / longest
     }
 
     /// The squared distance from `p` to this candidate's box (zero inside):

@@ -398,8 +398,18 @@ pub(crate) fn sweep_robust_within<T: Real>(
         Some(b) => *t < b.t,
     };
     let mut vertex_open = [true; 3];
+    let dist_sq = p.map(norm_squared);
     for i in 0..3 {
-        let (a, e) = (p[i], &edges[i]);
+        let ends = [i, (i + 1) % 3];
+        // The line through the edge from its nearer end `a`: the distance
+        // to it is then computed from coordinates of the size of that
+        // distance, not of the far end (a long edge reaching far away would
+        // carry its far end's rounding into the cross products; fuzz
+        // finding F15). Along the edge, `f` is measured from `a`: the edge
+        // spans `[lo, lo + 1]`.
+        let from_end = dist_sq[ends[1]] < dist_sq[ends[0]];
+        let (a, e) = (p[ends[usize::from(from_end)]], &edges[i]);
+        let lo = if from_end { -one.clone() } else { zero.clone() };
         let e2 = norm_squared(e);
         let m = cross(e, vel);
         let k = cross(e, a);
@@ -407,7 +417,6 @@ pub(crate) fn sweep_robust_within<T: Real>(
         if !(c > zero) {
             continue;
         }
-        let ends = [i, (i + 1) % 3];
         // disc = (m.k)^2 - |m|^2 c = |e|^2 (|m|^2 - (m.a)^2) by Lagrange's
         // identity, since m x k = e (m . a): no fourth powers cancel.
         let det = dot(&m, a);
@@ -419,9 +428,9 @@ pub(crate) fn sweep_robust_within<T: Real>(
         };
         let centre = vel * t.clone();
         let f = dot(&(&centre - a), e) / &e2;
-        if f < zero {
+        if f < lo {
             vertex_open[ends[1]] = false;
-        } else if f > one {
+        } else if f > lo + &one {
             vertex_open[ends[0]] = false;
         } else {
             ends.iter().for_each(|&v| vertex_open[v] = false);

@@ -144,7 +144,8 @@ fn padding<T: Real>(start_magnitude: f64, p: &Vec3<T>, w: &Vec3<T>, c: &Candidat
     let tri = &c.triangle;
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
     let s = magnitude(w).max(nearest).max(1.0);
-    let tilt = opts.tilt_factor(c.tilt());
+    // The tilt never exceeds the shape factor: most triangles need no more.
+    let tilt = if c.shape.to_f64() <= opts.free_tilt { 1.0 } else { opts.tilt_factor(c.tilt()) };
     T::c((opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
 }
 

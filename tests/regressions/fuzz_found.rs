@@ -388,3 +388,32 @@ fn sphere_in_a_corner_beside_a_huge_sliver_stays_out_of_it() {
     let tilt = Candidate::lone(0, Triangle::new(v(sliver[0]), v(sliver[1]), v(sliver[2]))).tilt();
     assert!(tilt > 1e3, "the case needs a flat cap: tilt factor {tilt:e}");
 }
+
+/// F15 (seventh session, `move_robust`, `f64`): a unit sphere sliding on a
+/// floor past a triangle with one vertex near the floor and two 2.5e4 to
+/// 3.7e4 away ended `5.0e-13` inside it, after eight sweeps in a row met
+/// its long edge at `t = 0`. The edge test measured the distance to the
+/// edge's line from the edge's first vertex, here the far one: the cross
+/// products then carried that vertex's rounding (`u` times 3.7e4), 2,800
+/// times the padding. The line is now taken from the nearer end.
+#[test]
+fn sphere_sliding_past_a_long_edge_from_far_away_stays_out() {
+    let mut soup: Vec<[[f64; 3]; 3]> = Vec::new();
+    // A floor of eight triangles around the origin and a larger one.
+    for (x, z) in [(-1.0, -1.0), (-1.0, 0.0), (0.0, -1.0), (0.0, 0.0)] {
+        soup.push([[x, 0.0, z], [x, 0.0, z + 1.0], [x + 1.0, 0.0, z + 1.0]]);
+        soup.push([[x, 0.0, z], [x + 1.0, 0.0, z + 1.0], [x + 1.0, 0.0, z]]);
+    }
+    soup.push([[0.0, 0.0, -20.0], [0.0, 0.0, 20.0], [20.0, 0.0, 20.0]]);
+    soup.push([[0.0, 0.0, -20.0], [20.0, 0.0, 20.0], [20.0, 0.0, -20.0]]);
+    soup.push([
+        [0.25, 0.0, 0.875],
+        [-5414.756202562431, 7521.518308558586, 24074.179101675076],
+        [12664.469082322203, 34096.322803001894, -7803.591330936476],
+    ]);
+    let push = [0.10000000149011612, -0.019999999552965164, 0.03700000047683716];
+    let frames = [(push, [0.0; 3]); 24];
+    let start = [-0.800000011920929, 1.0499999523162842, -0.30000001192092896];
+    let worst = worst_penetration::<f64>(&soup, [1.0; 3], start, &frames);
+    assert!(worst <= 0.0, "penetration {worst:e}");
+}
