@@ -399,7 +399,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     };
     let mut vertex_open = [true; 3];
     let dist_sq = p.map(norm_squared);
-    for i in 0..3 {
+    for (i, e) in edges.iter().enumerate() {
         let ends = [i, (i + 1) % 3];
         // The line through the edge from its nearer end `a`: the distance
         // to it is then computed from coordinates of the size of that
@@ -408,7 +408,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
         // finding F15). Along the edge, `f` is measured from `a`: the edge
         // spans `[lo, lo + 1]`.
         let from_end = dist_sq[ends[1]] < dist_sq[ends[0]];
-        let (a, e) = (p[ends[usize::from(from_end)]], &edges[i]);
+        let a = p[ends[usize::from(from_end)]];
         let lo = if from_end { -one.clone() } else { zero.clone() };
         let e2 = norm_squared(e);
         let m = cross(e, vel);
