@@ -286,7 +286,8 @@ pub(crate) fn sweep_robust_within<T: Real>(
     // Edges from the given vertices, not from `rel` (see `Candidate::edges`).
     let edges = &c.edges;
     let mut normal = c.normal.clone();
-    let nearest = nearest_vertex(p);
+    let dist_sq = p.map(norm_squared);
+    let nearest = nearest_vertex(&dist_sq);
 
     // Which side the centre (the origin, now) is on, from the nearest vertex.
     let mut plane_dist = zero.clone();
@@ -398,7 +399,6 @@ pub(crate) fn sweep_robust_within<T: Real>(
         Some(b) => *t < b.t,
     };
     let mut vertex_open = [true; 3];
-    let dist_sq = p.map(norm_squared);
     for (i, e) in edges.iter().enumerate() {
         let ends = [i, (i + 1) % 3];
         // The line through the edge from its nearer end `a`: the distance
@@ -578,7 +578,7 @@ pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions
     let zero = T::zero();
     let rel = c.triangle.relative_to(base);
     let p = [&rel.a, &rel.b, &rel.c];
-    let nearest = nearest_vertex(p);
+    let nearest = nearest_vertex(&p.map(norm_squared));
     let mut face = c.normal.clone();
     let mut plane_dist = zero.clone();
     if let Some(n) = face.as_mut() {
@@ -598,11 +598,10 @@ pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions
     Some(Proximity { dist, normal, point: closest + base, feature, tol })
 }
 
-/// The index of the vertex nearest the origin (the first on a tie).
-fn nearest_vertex<T: Real>(p: [&Vec3<T>; 3]) -> usize {
-    (0..3)
-        .min_by(|&i, &k| norm_squared(p[i]).partial_cmp(&norm_squared(p[k])).unwrap_or(std::cmp::Ordering::Equal))
-        .unwrap_or(0)
+/// The index of the vertex nearest the origin, given their squared
+/// distances (the first on a tie).
+fn nearest_vertex<T: Real>(dist_sq: &[T; 3]) -> usize {
+    (0..3).min_by(|&i, &k| dist_sq[i].partial_cmp(&dist_sq[k]).unwrap_or(std::cmp::Ordering::Equal)).unwrap_or(0)
 }
 
 /// Whether a contact on `feature` keeps its own normal (an active edge or
