@@ -478,27 +478,15 @@ fn face_contact<T: Real>(
     if !(nv < zero && *plane_dist > one) {
         return None;
     }
-    let t = (plane_dist.clone() - &one) / -nv.clone();
+    let t = (plane_dist.clone() - &one) / -nv;
     if !wins(&t) {
         return None;
     }
     let contact = vel * t.clone() - n;
     // Orientation against the triangle's own winding normal (not the
-    // side-flipped `n`), so back faces are found too. The contact point is
-    // off by about `u |contact|`, and along the track by the time's error,
-    // `u s |vel| / |nv|` at a grazing angle: a point within that `slack` of
-    // a side (at most `sqrt(2 touch_ulps u s)`, whose square stays within
-    // the touching tolerance) is accepted, since the sphere touches the
-    // triangle at the face's time to within the square of that distance,
-    // whereas a side's own root, for a long grazing sweep, can be late by
-    // far more (fuzz finding F16).
+    // side-flipped `n`), so back faces are found too.
     let winding = c.normal.as_ref().unwrap_or(n);
-    let u = T::unit_roundoff();
-    let s = max_abs(&contact, one.clone()) + max_abs(vel, zero.clone());
-    let grazing = T::c(4.0 * u) * s.clone() * (one.clone() + max_abs(vel, zero.clone()) / -nv);
-    let slack = grazing.min((T::c(32.0 * u) * s).sqrt());
-    let inside =
-        (0..3).all(|i| dot(&cross(&c.edges[i], &(&contact - p[i])), winding) >= -(slack.clone() * norm(&c.edges[i])));
+    let inside = (0..3).all(|i| dot(&cross(&c.edges[i], &(&contact - p[i])), winding) >= zero);
     inside.then(|| Hit {
         t,
         point: contact + base,
