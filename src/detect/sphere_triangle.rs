@@ -314,7 +314,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
     // Face interior: the plane reached with the contact point inside.
-    let face_hit = || face_contact(c, p, normal.as_ref()?, &plane_dist, base, vel, &wins);
+    let face_hit = || face_contact(c, &rel, normal.as_ref()?, &plane_dist, base, vel, &wins);
     // Clear of the plane by more than the margin, the body cannot be
     // touching anything now: a face hit needs no closest point.
     if plane_dist > clear
@@ -457,16 +457,32 @@ pub(crate) fn sweep_robust_within<T: Real>(
 }
 
 /// The robust test's face contact: the unit sphere at the origin (the
-/// sweep's start, `p` the vertices relative to it) moving by `vel` reaches
-/// the plane at distance `plane_dist` along `-n` (`n` turned towards the
-/// centre) with the contact point inside the triangle, at a time that
-/// `wins`. (A function, not a closure: the robust test tries it in two
-/// places, before the closest point for a body clear of the plane and after
-/// it otherwise, and a closure's captures cost more than its arguments.)
+/// sweep's start, `rel` the triangle relative to it) moving by `vel`
+/// reaches the plane at distance `plane_dist` along `-n` (`n` turned
+/// towards the centre) with the contact point inside the triangle, at a
+/// time that `wins`. (A function, not a closure: the robust test tries it
+/// in two places, before the closest point for a body clear of the plane
+/// and after it otherwise, and a closure's captures cost more than its
+/// arguments.)
+///
+/// The contact point is rounded by about `u` times its own size, and
+/// shifted along the track by the time's error: the time is accurate in
+/// distance (`u s` over `|n . vel|`) but, at a grazing angle, that is
+/// `u s |vel| / |n . vel|` along the track. A point found outside the
+/// triangle is therefore still a face contact when its distance to the
+/// triangle is within that error, `e = 4 u s (1 + |vel| / |n . vel|)`
+/// (`s` the larger of 1 and the contact point's and the velocity's largest
+/// coordinates), capped at `sqrt(32 u s)`: the sphere at the face's time
+/// is then `sqrt(1 + e^2) - 1 <= 16 u s` from the triangle, a touch within
+/// the detection's bound, whereas the sides' own roots, at a grazing angle
+/// over a long sweep, can be late by far more (fuzz finding F16). The
+/// distance to the triangle itself is what is bounded, not only the
+/// distance to each side's line: near a sharp vertex, points close to both
+/// sides' lines lie far beyond the vertex.
 #[inline]
 fn face_contact<T: Real>(
     c: &Candidate<T>,
-    p: [&Vec3<T>; 3],
+    rel: &Triangle<T>,
     n: &Vec3<T>,
     plane_dist: &T,
     base: &Vec3<T>,
@@ -478,7 +494,7 @@ fn face_contact<T: Real>(
     if !(nv < zero && *plane_dist > one) {
         return None;
     }
-    let t = (plane_dist.clone() - &one) / -nv;
+    let t = (plane_dist.clone() - &one) / -nv.clone();
     if !wins(&t) {
         return None;
     }
@@ -486,15 +502,51 @@ fn face_contact<T: Real>(
     // Orientation against the triangle's own winding normal (not the
     // side-flipped `n`), so back faces are found too.
     let winding = c.normal.as_ref().unwrap_or(n);
+    let p = [&rel.a, &rel.b, &rel.c];
     let inside = (0..3).all(|i| dot(&cross(&c.edges[i], &(&contact - p[i])), winding) >= zero);
-    inside.then(|| Hit {
+    let point = if inside { contact } else { within_time_error(c, rel, winding, &contact, vel, &nv)? };
+    Some(Hit {
         t,
-        point: contact + base,
+        point: point + base,
         normal: n.clone(),
         feature: Feature::Face,
         triangle: c.index,
         started_overlapping: false,
     })
+}
+
+/// For [`face_contact`]: the point of the triangle `rel` nearest
+/// `contact` (the face's contact point, found outside the triangle) when it
+/// lies within the contact point's error `e` (see [`face_contact`]);
+/// `winding` is the triangle's unit normal and `nv` is `n . vel`. The
+/// sides' orientations rule out most points at once, without the closest
+/// point.
+#[cold]
+#[inline(never)]
+fn within_time_error<T: Real>(
+    c: &Candidate<T>,
+    rel: &Triangle<T>,
+    winding: &Vec3<T>,
+    contact: &Vec3<T>,
+    vel: &Vec3<T>,
+    nv: &T,
+) -> Option<Vec3<T>> {
+    let (zero, one) = (T::zero(), T::one());
+    let u = T::unit_roundoff();
+    let s = max_abs(contact, one.clone()) + max_abs(vel, zero.clone());
+    let grazing = T::c(4.0 * u) * &s * (one + norm(vel) / -nv.clone());
+    let e_sq = (grazing.clone() * grazing).min(T::c(32.0 * u) * s);
+    // Orientation `o` is `|edge|` times the signed distance to the side's line.
+    let p = [&rel.a, &rel.b, &rel.c];
+    let beyond = |i: usize| {
+        let o = dot(&cross(&c.edges[i], &(contact - p[i])), winding);
+        o < zero && o.clone() * o > e_sq.clone() * norm_squared(&c.edges[i])
+    };
+    if (0..3).any(beyond) {
+        return None;
+    }
+    let (closest, _) = closest_point_on_triangle(contact, rel);
+    (norm_squared(&(contact - &closest)) <= e_sq).then_some(closest)
 }
 
 /// A candidate seen from the sphere's centre: its vertices relative to the
