@@ -505,8 +505,14 @@ fn face_contact<T: Real>(
     // side-flipped `n`), so back faces are found too.
     let winding = c.normal.as_ref().unwrap_or(n);
     let p = [&rel.a, &rel.b, &rel.c];
-    let inside = (0..3).all(|i| dot(&cross(&c.edges[i], &(&contact - p[i])), winding) >= zero);
-    let point = if inside { contact } else { within_time_error(c, rel, winding, &contact, vel, &nv)? };
+    let outside = (0..3).find_map(|i| {
+        let o = dot(&cross(&c.edges[i], &(&contact - p[i])), winding);
+        (o < zero).then_some((i, o))
+    });
+    let point = match outside {
+        None => contact,
+        Some(side) => within_time_error(c, rel, winding, &contact, vel, &nv, side)?,
+    };
     Some(Hit {
         t,
         point: point + base,
@@ -520,9 +526,12 @@ fn face_contact<T: Real>(
 /// For [`face_contact`]: the point of the triangle `rel` nearest
 /// `contact` (the face's contact point, found outside the triangle) when it
 /// lies within the contact point's error `e` (see [`face_contact`]);
-/// `winding` is the triangle's unit normal and `nv` is `n . vel`. The
-/// sides' orientations rule out most points at once, without the closest
-/// point.
+/// `winding` is the triangle's unit normal, `nv` is `n . vel`, and `side`
+/// the first side found with a negative orientation and that orientation
+/// (`|edge|` times the signed distance to the side's line). Beyond that
+/// side by more than `e`'s cap, most points are ruled out at once; then
+/// beyond any side by more than `e`; only then is the closest point
+/// computed.
 #[cold]
 #[inline(never)]
 fn within_time_error<T: Real>(
@@ -532,19 +541,20 @@ fn within_time_error<T: Real>(
     contact: &Vec3<T>,
     vel: &Vec3<T>,
     nv: &T,
+    (side, orientation): (usize, T),
 ) -> Option<Vec3<T>> {
     let (zero, one) = (T::zero(), T::one());
     let u = T::unit_roundoff();
     let s = max_abs(contact, one.clone()) + max_abs(vel, zero.clone());
-    let grazing = T::c(4.0 * u) * &s * (one + norm(vel) / -nv.clone());
-    let e_sq = (grazing.clone() * grazing).min(T::c(32.0 * u) * s);
-    // Orientation `o` is `|edge|` times the signed distance to the side's line.
+    let cap_sq = T::c(32.0 * u) * &s;
+    let beyond = |o: T, i: usize, e_sq: &T| o < zero && o.clone() * o > e_sq.clone() * norm_squared(&c.edges[i]);
+    if beyond(orientation, side, &cap_sq) {
+        return None;
+    }
+    let grazing = T::c(4.0 * u) * s * (one + norm(vel) / -nv.clone());
+    let e_sq = (grazing.clone() * grazing).min(cap_sq);
     let p = [&rel.a, &rel.b, &rel.c];
-    let beyond = |i: usize| {
-        let o = dot(&cross(&c.edges[i], &(contact - p[i])), winding);
-        o < zero && o.clone() * o > e_sq.clone() * norm_squared(&c.edges[i])
-    };
-    if (0..3).any(beyond) {
+    if (0..3).any(|i| beyond(dot(&cross(&c.edges[i], &(contact - p[i])), winding), i, &e_sq)) {
         return None;
     }
     let (closest, _) = closest_point_on_triangle(contact, rel);
