@@ -316,7 +316,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
     // Face interior: the plane reached with the contact point inside.
-    let face_hit = || face_contact(c, &rel, normal.as_ref()?, &plane_dist, base, vel, &wins);
+    let face_hit = || face_contact(c, &rel, normal.as_ref()?, &plane_dist, base, vel, opts.touch_ulps, &wins);
     // Clear of the plane by more than the margin, the body cannot be
     // touching anything now: a face hit needs no closest point.
     if plane_dist > clear
@@ -467,21 +467,16 @@ pub(crate) fn sweep_robust_within<T: Real>(
 /// and after it otherwise, and a closure's captures cost more than its
 /// arguments.)
 ///
-/// The contact point is rounded by about `u` times its own size, and
-/// shifted along the track by the time's error: the time is accurate in
-/// distance (`u s` over `|n . vel|`) but, at a grazing angle, that is
-/// `u s |vel| / |n . vel|` along the track. A point found outside the
-/// triangle is therefore still a face contact when its distance to the
-/// triangle is within that error, `e = 4 u s (1 + |vel| / |n . vel|)`
-/// (`s` the larger of 1 and the contact point's and the velocity's largest
-/// coordinates), capped at `sqrt(32 u s)`: the sphere at the face's time
-/// is then `sqrt(1 + e^2) - 1 <= 16 u s` from the triangle, a touch within
-/// the detection's bound, whereas the sides' own roots, at a grazing angle
-/// over a long sweep, can be late by far more (fuzz finding F16). The
-/// distance to the triangle itself is what is bounded, not only the
-/// distance to each side's line: near a sharp vertex, points close to both
-/// sides' lines lie far beyond the vertex.
+/// The plane's time `t_p = (plane_dist - 1) / -(n . vel)` is accurate in
+/// distance but not along the track: at a grazing angle its error, `u s`
+/// over `|n . vel|`, moves the contact point by `u s |vel| / |n . vel|`
+/// (fuzz findings F16 and F17). So when the contact point at `t_p` is
+/// outside the triangle, the face is still touched if, at some moment of
+/// the window where the centre's plane distance is within the touching
+/// tolerance `tol = touch_ulps u s` of 1, the centre's projection is
+/// inside: the earliest such moment is the hit (see [`face_window`]).
 #[inline]
+#[allow(clippy::too_many_arguments)]
 fn face_contact<T: Real>(
     c: &Candidate<T>,
     rel: &Triangle<T>,
@@ -489,6 +484,7 @@ fn face_contact<T: Real>(
     plane_dist: &T,
     base: &Vec3<T>,
     vel: &Vec3<T>,
+    touch_ulps: f64,
     wins: &impl Fn(&T) -> bool,
 ) -> Option<Hit<T>> {
     let (zero, one) = (T::zero(), T::one());
@@ -509,13 +505,21 @@ fn face_contact<T: Real>(
         let o = dot(&cross(&c.edges[i], &(&contact - p[i])), winding);
         (o < zero).then_some((i, o))
     });
-    let point = match outside {
-        None => contact,
-        Some(side) => within_time_error(c, rel, winding, &contact, vel, &nv, side)?,
+    let (t, contact) = match outside {
+        None => (t, contact),
+        Some(side) => {
+            let window = Window { t, nv, tol: T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel) };
+            let t = face_window(c, rel, winding, vel, &contact, &window, side)?;
+            if !wins(&t) {
+                return None;
+            }
+            let contact = vel * t.clone() - n;
+            (t, contact)
+        }
     };
     Some(Hit {
         t,
-        point: point + base,
+        point: contact + base,
         normal: n.clone(),
         feature: Feature::Face,
         triangle: c.index,
@@ -523,42 +527,70 @@ fn face_contact<T: Real>(
     })
 }
 
-/// For [`face_contact`]: the point of the triangle `rel` nearest
-/// `contact` (the face's contact point, found outside the triangle) when it
-/// lies within the contact point's error `e` (see [`face_contact`]);
-/// `winding` is the triangle's unit normal, `nv` is `n . vel`, and `side`
-/// the first side found with a negative orientation and that orientation
-/// (`|edge|` times the signed distance to the side's line). Beyond that
-/// side by more than `e`'s cap, most points are ruled out at once; then
-/// beyond any side by more than `e`; only then is the closest point
-/// computed.
+/// The magnitude `s` a face contact's rounding scales with: the larger of 1
+/// and the contact point's largest coordinate, plus the velocity's.
+fn scale<T: Real>(contact: &Vec3<T>, vel: &Vec3<T>) -> T {
+    max_abs(contact, T::one()) + max_abs(vel, T::zero())
+}
+
+/// Where a face contact may lie in time: the plane's time `t`, the
+/// approach speed `nv = n . vel < 0`, and the tolerance `tol` on the
+/// plane distance; the window is `|t' - t| <= tol / |nv|`.
+struct Window<T: Real> {
+    t: T,
+    nv: T,
+    tol: T,
+}
+
+/// For [`face_contact`], when the contact point at the plane's time is
+/// outside the triangle: the earliest time of the window (clipped to
+/// `t >= 0`) at which the centre's projection onto the plane is inside the
+/// triangle, if any. `contact` is the contact point at the window's `t`,
+/// `winding` the triangle's unit normal, and `side` the first side found
+/// with a negative orientation, with that orientation (`|edge|` times the
+/// signed distance to the side's line).
+///
+/// Over the window the plane distance stays within `tol` (plus its own
+/// rounding, a few `u s`) of 1 and decreases, so a hit at the earliest
+/// time the projection is inside touches within `tol`, and nothing was
+/// entered before by more than `tol`. Each side's orientation is linear in
+/// time, `o_i(t') = o_i(t) + (t' - t) d_i` with
+/// `d_i = (e_i x vel) . winding`: the projection is inside from
+/// `t - o_i / d_i` on where `d_i > 0`, until then where `d_i < 0`. Within
+/// the window the projection moves at most `tol |vel| / |nv|`, so a point
+/// beyond the first side by more than that is ruled out at once.
 #[cold]
 #[inline(never)]
-fn within_time_error<T: Real>(
+fn face_window<T: Real>(
     c: &Candidate<T>,
     rel: &Triangle<T>,
     winding: &Vec3<T>,
-    contact: &Vec3<T>,
     vel: &Vec3<T>,
-    nv: &T,
+    contact: &Vec3<T>,
+    window: &Window<T>,
     (side, orientation): (usize, T),
-) -> Option<Vec3<T>> {
-    let (zero, one) = (T::zero(), T::one());
-    let u = T::unit_roundoff();
-    let s = max_abs(contact, one.clone()) + max_abs(vel, zero.clone());
-    let cap_sq = T::c(32.0 * u) * &s;
-    let beyond = |o: T, i: usize, e_sq: &T| o < zero && o.clone() * o > e_sq.clone() * norm_squared(&c.edges[i]);
-    if beyond(orientation, side, &cap_sq) {
+) -> Option<T> {
+    let zero = T::zero();
+    let Window { t, nv, tol } = window;
+    let reach = tol.clone() * tol * norm_squared(vel);
+    if orientation.clone() * orientation * nv * nv > reach * norm_squared(&c.edges[side]) {
         return None;
     }
-    let grazing = T::c(4.0 * u) * s * (one + norm(vel) / -nv.clone());
-    let e_sq = (grazing.clone() * grazing).min(cap_sq);
-    let p = [&rel.a, &rel.b, &rel.c];
-    if (0..3).any(|i| beyond(dot(&cross(&c.edges[i], &(contact - p[i])), winding), i, &e_sq)) {
-        return None;
+    let half = tol.clone() / -nv.clone();
+    let mut lo = (t.clone() - &half).max(zero.clone());
+    let mut hi = t.clone() + half;
+    for (e, q) in c.edges.iter().zip([&rel.a, &rel.b, &rel.c]) {
+        let o = dot(&cross(e, &(contact - q)), winding);
+        let d = dot(&cross(e, vel), winding);
+        if d > zero {
+            lo = lo.max(t.clone() - o / d);
+        } else if d < zero {
+            hi = hi.min(t.clone() - o / d);
+        } else if o < zero {
+            return None;
+        }
     }
-    let (closest, _) = closest_point_on_triangle(contact, rel);
-    (norm_squared(&(contact - &closest)) <= e_sq).then_some(closest)
+    (lo <= hi).then_some(lo)
 }
 
 /// A candidate seen from the sphere's centre: its vertices relative to the

@@ -471,3 +471,38 @@ fn grazing_sweep_past_a_needles_tip_reports_no_distant_face_hit() {
         assert!((dist - 1.0).abs() < 1e-4, "a hit {dist} from the triangle: {hit:?}");
     }
 }
+
+/// F17 (eighth session, `sweep_triangle`, `f64`): a unit sphere gliding
+/// 162 radii almost parallel to a small triangle's plane (`|n . v|` a
+/// relative `1e-11` of `|v|`), a hair below distance 1 from it, first
+/// touches the triangle's vertex 0 tangentially and then passes over the
+/// face, `3.2e-12` deep by the time it reaches edge 1. The plane's time
+/// was known only to `1e-6` in `t` (`1.6e-4` along the track), so its
+/// contact point fell outside the triangle; edge 2's cylinder, entered by
+/// `1e-16`, rounded to "never entered" and ruled out vertex 0; the hit
+/// reported was edge 1's, `206 u s k` too deep. The face test now takes
+/// the earliest moment of the window where the plane distance is within
+/// the touching tolerance of 1 at which the centre's projection is inside
+/// the triangle.
+#[test]
+fn sphere_gliding_along_a_plane_onto_a_vertex_is_stopped_on_arrival() {
+    let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
+    let tri = Triangle::new(
+        v([-0.16774366710807292, -0.11752045908102457, -0.05022320802704834]),
+        v([0.11752045908102456, -0.05022320802704842, 0.16774366710807298]),
+        v([0.050223208027048424, 0.16774366710807295, -0.11752045908102454]),
+    );
+    let base = v([-6.974990281995368, -7.0940456873494355, -1.612995402384915]);
+    let vel = v([121.51783794377161, 105.3021468684244, 16.215691078146385]);
+    let hit =
+        sweep_robust(&Candidate::lone(0, tri.clone()), &base, &vel, &DetectOptions::default(), None).expect("a hit");
+    // The 256-bit reference touches vertex 0 at t = 0.0607696532211745778;
+    // the body is 3.2e-12 deep by t = 0.0628. At the reported time the
+    // centre must be at distance 1 from the triangle within the bound
+    // (64 u s k = 1e-12), measured here in f64 from the closest point.
+    let centre = base + vel * hit.t;
+    let (closest, _) = closest_point_on_triangle(&centre, &tri);
+    let dist = (centre - closest).norm();
+    assert!((dist - 1.0).abs() < 1e-12, "distance {dist} at {hit:?}");
+    assert!((hit.t - 0.060_769_653_221_174_58).abs() < 1e-6, "{hit:?}");
+}
