@@ -162,10 +162,12 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   never reported.
 /// * Face: plane distance taken from the vertex nearest the centre; the
 ///   contact point is inside when all three edge orientations are
-///   non-negative, or when its distance to the triangle is within the
-///   face time's own error along the track (capped at `sqrt(32 u s)`; see
-///   `face_contact`); other boundary cases fall to the edge tests, which
-///   agree to second order.
+///   non-negative. At a grazing angle the plane's time is accurate in
+///   distance but not along the track, so a contact point found outside
+///   is clipped: the hit is the earliest moment, among those where the
+///   plane distance is within `tol` of 1, at which the centre's projection
+///   is inside the triangle (see `face_window`); otherwise the edge tests
+///   decide, which agree to second order.
 /// * Edges and vertices: squared-distance quadratics from cross products
 ///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
 ///   `(e.v)^2`), their discriminants from Lagrange's identity (no
