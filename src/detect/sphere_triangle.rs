@@ -402,6 +402,15 @@ pub(crate) fn sweep_robust_within<T: Real>(
         None => wins(t),
         Some(b) => *t < b.t,
     };
+    //
+    // Where along an edge its cylinder is entered comes from `centre - a`,
+    // whose two terms carry a few `u` of the sweep's and the vertex's
+    // magnitudes: `position = 8 u (far + |vel|)`. For a triangle smaller
+    // than that (a tiny one far from the start, in `f32`), that position
+    // says nothing, and an entry within `position` of an end counts as on
+    // the edge: the sphere then touches the edge within `position^2 / 2`.
+    let position = T::c(8.0 * T::unit_roundoff()) * (far.clone() + &swept.speed);
+    let position_sq = position.clone() * position;
     let mut vertex_open = [true; 3];
     for (i, e) in edges.iter().enumerate() {
         let ends = [i, (i + 1) % 3];
@@ -432,12 +441,17 @@ pub(crate) fn sweep_robust_within<T: Real>(
         };
         let centre = vel * t.clone();
         let f = dot(&(&centre - a), e) / &e2;
-        if f < lo {
+        let hi = lo.clone() + &one;
+        // Beyond an end by less than `position` (`f` in units of `|e|`)
+        // is on the edge (fuzz finding F18).
+        let near = |excess: T| excess.clone() * excess * &e2 <= position_sq;
+        if f < lo && !near(lo.clone() - &f) {
             vertex_open[ends[1]] = false;
-        } else if f > lo + &one {
+        } else if f > hi && !near(f.clone() - &hi) {
             vertex_open[ends[0]] = false;
         } else {
             ends.iter().for_each(|&v| vertex_open[v] = false);
+            let f = f.max(lo).min(hi);
             best = Some(Touch { t, point: a + e * f, centre, feature: Feature::Edge(i as u8) });
         }
     }

@@ -506,3 +506,26 @@ fn sphere_gliding_along_a_plane_onto_a_vertex_is_stopped_on_arrival() {
     assert!((dist - 1.0).abs() < 1e-12, "distance {dist} at {hit:?}");
     assert!((hit.t - 0.060_769_653_221_174_58).abs() < 1e-6, "{hit:?}");
 }
+
+/// F18 (eighth session, `sweep_triangle`, `f32`): a unit sphere swept
+/// head-on through a triangle `4e-5` across, from `8e3` away, reported no
+/// hit. Relative to the start the vertices carry `u * 8e3 = 5e-4` of
+/// rounding, ten times the triangle: the face's inside test failed, and
+/// each edge's cylinder was entered "beyond an end", which ruled out both
+/// of the triangle's other vertices three times over. An entry within the
+/// position's rounding of an end now counts as on the edge.
+#[test]
+fn sphere_swept_head_on_through_a_tiny_far_triangle_hits_it() {
+    let v = |x: [f64; 3]| vec3::<f32>(x[0], x[1], x[2]);
+    let tri = Triangle::new(
+        v([-1.5647293021556913e-5, 9.10635153510365e-6, -2.6685709192722383e-5]),
+        v([-2.731670234183808e-5, -1.0227094800188425e-5, 1.3751174401383786e-5]),
+        v([1.99892803760844e-5, -7.3559692603092715e-6, 2.4211750836929742e-5]),
+    );
+    let base = v([1134.8876886945457, -7254.75995478391, -3141.0938003238875]);
+    let vel = v([-1432.7185298014094, 9158.64097369426, 3965.417226848128]);
+    let hit = sweep_robust(&Candidate::lone(0, tri), &base, &vel, &DetectOptions::default(), None).expect("a hit");
+    // The 256-bit reference touches at t = 0.79202271; the approach speed
+    // is 1e4 radii, and the bound here (64 u s k) is 0.064 in distance.
+    assert!((hit.t - 0.792_022_7).abs() * 1.0e4 < 0.064, "{hit:?}");
+}
