@@ -402,7 +402,6 @@ pub(crate) fn sweep_robust_within<T: Real>(
         None => wins(t),
         Some(b) => *t < b.t,
     };
-    //
     // Where along an edge its cylinder is entered comes from `centre - a`,
     // whose two terms carry a few `u` of the sweep's and the vertex's
     // magnitudes: `position = 8 u (far + |vel|)`. For a triangle smaller
