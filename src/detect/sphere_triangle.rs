@@ -402,14 +402,6 @@ pub(crate) fn sweep_robust_within<T: Real>(
         None => wins(t),
         Some(b) => *t < b.t,
     };
-    // Where along an edge its cylinder is entered comes from `centre - a`,
-    // whose two terms carry a few `u` of the sweep's and the vertex's
-    // magnitudes: `position = 8 u (far + |vel|)`. For a triangle smaller
-    // than that (a tiny one far from the start, in `f32`), that position
-    // says nothing, and an entry within `position` of an end counts as on
-    // the edge: the sphere then touches the edge within `position^2 / 2`.
-    let position = T::c(8.0 * T::unit_roundoff()) * (far.clone() + &swept.speed);
-    let position_sq = position.clone() * position;
     let mut vertex_open = [true; 3];
     for (i, e) in edges.iter().enumerate() {
         let ends = [i, (i + 1) % 3];
@@ -438,19 +430,23 @@ pub(crate) fn sweep_robust_within<T: Real>(
             ends.iter().for_each(|&v| vertex_open[v] = false);
             continue;
         };
-        let centre = vel * t.clone();
-        let f = dot(&(&centre - a), e) / &e2;
+        let f = dot(&(&(vel * t.clone()) - a), e) / &e2;
         let hi = lo.clone() + &one;
-        // Beyond an end by less than `position` (`f` in units of `|e|`)
-        // is on the edge (fuzz finding F18).
-        let near = |excess: T| excess.clone() * excess * &e2 <= position_sq;
-        if f < lo && !near(lo.clone() - &f) {
-            vertex_open[ends[1]] = false;
-        } else if f > hi && !near(f.clone() - &hi) {
-            vertex_open[ends[0]] = false;
+        // Entered beyond an end: maybe within rounding of it, or at a
+        // grazing angle (see `edge_beyond_end`).
+        let touch = if f < lo || f > hi {
+            let magnitude = far.clone() + &swept.speed;
+            let Some(touch) = edge_beyond_end(e, a, vel, (&t, &f), (&lo, &hi), &magnitude, opts.touch_ulps) else {
+                vertex_open[if f < lo { ends[1] } else { ends[0] }] = false;
+                continue;
+            };
+            Some(touch).filter(|(t, _)| better(t, &best))
         } else {
-            ends.iter().for_each(|&v| vertex_open[v] = false);
-            let f = f.max(lo).min(hi);
+            Some((t, f))
+        };
+        ends.iter().for_each(|&v| vertex_open[v] = false);
+        if let Some((t, f)) = touch {
+            let centre = vel * t.clone();
             best = Some(Touch { t, point: a + e * f, centre, feature: Feature::Edge(i as u8) });
         }
     }
@@ -471,6 +467,99 @@ pub(crate) fn sweep_robust_within<T: Real>(
         }
     }
     Some(best?.into_hit(Some(base), &face_normal, index, false))
+}
+
+/// For the robust test's edges: the touch `(t', f')` (`f'` the position
+/// along the edge, in `[lo, hi]`) when the unit cylinder around the line
+/// through `a` along `e` is entered at time `t` at a position `f` beyond an
+/// end, the sphere moving by `vel`; `magnitude` is `far + |vel|` (the
+/// largest relative coordinate plus the speed). The entry's quadratic is
+/// recomputed here, as the caller computed it, so that the caller's loop
+/// keeps nothing alive for this rare case.
+///
+/// * **Within rounding of the end** (fuzz finding F18). The position
+///   comes from `centre - a`, whose terms carry a few `u` of `magnitude`:
+///   an entry within `position = 8 u magnitude` of an end counts as on the
+///   edge, at that end (the sphere then touches the edge within
+///   `position^2 / 2`). For a triangle smaller than that (a tiny one far
+///   from the start, in `f32`) the position says nothing.
+/// * **At a grazing angle** (finding F19). The entry time is accurate in
+///   distance but not along the edge (`u s` over the approach rate
+///   `sqrt(disc) / |e|^2`, times the speed along the edge): an entry
+///   computed beyond an end may really be on the edge, and a sphere moving
+///   away from that end then sinks into the edge unseen. Over the *band*
+///   where the distance to the line is within the touching tolerance
+///   `tol = touch_ulps u magnitude` of 1 while entering (from the entry of
+///   the cylinder of radius `1 + tol` to that of radius `1 - tol`, or the
+///   exit of the first when the second is never entered), the position
+///   along the edge is linear in time; the earliest moment of the band at
+///   which it is on the edge is a touch within `tol`, and before it nothing
+///   of the edge (its ends included) was entered by more than `tol`. The
+///   band is at most `2 tol |e|^2 / sqrt(inner)` long (`inner` the
+///   discriminant for radius `1 - tol`; the distance's rate is smallest at
+///   the band's end), and the position moves at most `|vel| / |e|` per
+///   unit time, so an entry farther beyond the end than that is ruled out
+///   without solving for the band.
+#[cold]
+#[inline(never)]
+fn edge_beyond_end<T: Real>(
+    e: &Vec3<T>,
+    a: &Vec3<T>,
+    vel: &Vec3<T>,
+    (t, f): (&T, &T),
+    (lo, hi): (&T, &T),
+    magnitude: &T,
+    touch_ulps: f64,
+) -> Option<(T, T)> {
+    let zero = T::zero();
+    let e2 = norm_squared(e);
+    let excess = if f < lo { lo.clone() - f } else { f.clone() - hi };
+    let excess_sq = excess.clone() * excess;
+    let position = T::c(8.0 * T::unit_roundoff()) * magnitude;
+    if excess_sq.clone() * &e2 <= position.clone() * position {
+        return Some((t.clone(), f.clone().max(lo.clone()).min(hi.clone())));
+    }
+    let tol = T::c(touch_ulps * T::unit_roundoff()) * magnitude;
+    let two_tol = tol.clone() * T::c(2.0);
+    let tol_sq = tol.clone() * &tol;
+    // The quadratic m2 t^2 + 2 half_b t + c = 0 of the caller, for radius 1.
+    let m = cross(e, vel);
+    let k = cross(e, a);
+    let c = norm_squared(&k) - &e2;
+    let det = dot(&m, a);
+    let m2 = norm_squared(&m);
+    let disc = e2.clone() * (m2.clone() - det.clone() * &det);
+    let half_b = -dot(&m, &k);
+    // For radius 1 - tol and 1 + tol: c and disc shift by e2 (1 - r^2).
+    let shrink = e2.clone() * (two_tol.clone() - &tol_sq);
+    let inner = disc.clone() - m2.clone() * &shrink;
+    if inner > zero && excess_sq * &inner > two_tol.clone() * &two_tol * &e2 * norm_squared(vel) {
+        return None;
+    }
+    let grow = e2.clone() * (two_tol + tol_sq);
+    let outer_c = c.clone() - &grow;
+    let outer_disc = disc + m2.clone() * &grow;
+    let start = if outer_c > zero { stable_entry_root(&half_b, &outer_c, &outer_disc)? } else { zero.clone() };
+    let end = if inner > zero {
+        stable_entry_root(&half_b, &(c + shrink), &inner)?
+    } else {
+        (outer_disc.sqrt() - &half_b) / m2
+    };
+    // f(t') = f + (t' - t) (vel . e) / e2, within [lo, hi].
+    let rate = dot(vel, e) / e2;
+    let (enter, leave) = if rate > zero {
+        (t.clone() + (lo.clone() - f) / &rate, t.clone() + (hi.clone() - f) / &rate)
+    } else if rate < zero {
+        (t.clone() + (hi.clone() - f) / &rate, t.clone() + (lo.clone() - f) / &rate)
+    } else {
+        return None;
+    };
+    let from = start.max(enter);
+    if !(from <= end.min(leave)) {
+        return None;
+    }
+    let at = (f.clone() + (from.clone() - t) * rate).max(lo.clone()).min(hi.clone());
+    Some((from, at))
 }
 
 /// The robust test's face contact: the unit sphere at the origin (the

@@ -529,3 +529,27 @@ fn sphere_swept_head_on_through_a_tiny_far_triangle_hits_it() {
     // is 1e4 radii, and the bound here (64 u s k) is 0.064 in distance.
     assert!((hit.t - 0.792_022_7).abs() * 1.0e4 < 0.064, "{hit:?}");
 }
+
+/// F19 (eighth session, found by a directed probe after F16-F18, then
+/// pinned by `tests/fuzz_props.rs`'s `robust_sweep_grazing_edge_*`): a unit
+/// sphere gliding 1000 radii along a triangle's edge (in its plane, an
+/// approach rate of `1e-6`), entering the edge's cylinder `7e-9` past its
+/// end, got no hit and sank `1e-8` into the edge. The entry time is
+/// accurate in distance but, at that angle, `1e-11` of the sweep along the
+/// edge, which put the entry beyond the end; the end's vertex, which the
+/// sphere moves away from, was never entered. The edge test now looks over
+/// the band where the line's distance is within the touching tolerance of
+/// 1 for a moment at which the projection is on the edge.
+#[test]
+fn sphere_gliding_along_an_edge_entering_just_past_its_end_is_stopped() {
+    let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
+    let tri = Triangle::new(v([0.0, 0.0, 0.0]), v([10.0, 0.0, 0.0]), v([0.0, -10.0, 0.0]));
+    let base = v([-609.99999999466, 1.00000061, 0.0]);
+    let vel = v([1000.0, -1e-6, 0.0]);
+    let hit = sweep_robust(&Candidate::lone(0, tri), &base, &vel, &DetectOptions::default(), None).expect("a hit");
+    // The line y = 0 is reached when 1.00000061 - 1e-6 t = 1, t = 0.61
+    // (x = 5.3e-9, on the edge); the bound, 64 u s k, is 1.4e-11 in
+    // distance, 1.4e-5 in `t` at this approach rate.
+    assert_eq!(hit.feature, Feature::Edge(0), "{hit:?}");
+    assert!((hit.t - 0.61).abs() < 1.4e-5, "{hit:?}");
+}
