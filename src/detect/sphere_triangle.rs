@@ -183,7 +183,11 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 /// * A sphere *touching* an inactive (internal) edge or vertex at `t = 0`,
 ///   as `active` says, is judged and reported with the face normal: on a
 ///   seam of a tessellated surface the exact contact normal is the face
-///   normal, and the rounded one must not stop a body sliding along it. A
+///   normal, and the rounded one must not stop a body sliding along it.
+///   Only where the centre is over the face, though (the geometric
+///   direction within 60 degrees of the face normal): beside the edge, near
+///   the face's plane, the face normal is no contact direction (fuzz
+///   finding F20), and the geometric one is kept. A
 ///   contact reached during the sweep (`t > 0`) keeps its geometric normal,
 ///   which is the face normal up to rounding on a flat seam and the right
 ///   constraint on a gently convex one (the body rides over it).
@@ -717,7 +721,8 @@ struct Local<'a, T: Real> {
 impl<T: Real> Local<'_, T> {
     /// The distance from the centre to the triangle, the separating
     /// direction (from the closest point `closest` on `feature` to the
-    /// centre; the face normal `face_normal` for an inactive edge or vertex)
+    /// centre; the face normal `face_normal` for an inactive edge or vertex
+    /// when the centre is over the face)
     /// and the touching tolerance. Distance and direction are computed per
     /// feature, from the nearest point that defines it, so both carry errors
     /// of order `u` times that point's magnitude `s`; the tolerance is
@@ -746,7 +751,16 @@ impl<T: Real> Local<'_, T> {
                 (d, sep, p[self.nearest])
             }
         };
-        let sep = if is_active(feature, self.active) { sep } else { face_normal.clone() };
+        // The face normal stands in for an inactive feature's direction
+        // only where the centre is over the face, within 60 degrees of its
+        // normal: on a seam or a gently convex fold the sphere touches the
+        // neighbouring face too, and their normals agree within the fold's
+        // angle. Beside the edge, near the plane (the outside of a sheet
+        // folded flat onto itself, fuzz finding F20), the face normal is
+        // no contact direction at all: a push away from the edge would be
+        // judged to approach the face by the rounding of its direction.
+        let over_face = dot(&sep, face_normal) > T::c(0.5);
+        let sep = if is_active(feature, self.active) || !over_face { sep } else { face_normal.clone() };
         let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * max_abs(local, T::one());
         (dist, sep, tol)
     }
@@ -759,7 +773,7 @@ pub struct Proximity<T: Real> {
     pub dist: T,
     /// Unit separating direction, from the triangle towards the centre, as
     /// the robust sweep reports it for a contact at `t = 0` (the face normal
-    /// on an inactive edge or vertex).
+    /// on an inactive edge or vertex with the centre over the face).
     pub normal: Vec3<T>,
     /// The closest point of the triangle (in the caller's coordinates).
     pub point: Vec3<T>,

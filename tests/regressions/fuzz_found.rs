@@ -553,3 +553,45 @@ fn sphere_gliding_along_an_edge_entering_just_past_its_end_is_stopped() {
     assert_eq!(hit.feature, Feature::Edge(0), "{hit:?}");
     assert!((hit.t - 0.61).abs() < 1.4e-5, "{hit:?}");
 }
+
+/// F20 (ninth session, `move_robust`, `f64`): an ellipsoid (radii 16.5,
+/// 38.5, 38.5) touching, from beside it and in its plane, the hinge of a
+/// sheet folded flat onto itself (four coplanar triangles of a flattened
+/// tetrahedron, 3e5 to 5e5 from the origin), pushed along the hinge, ended
+/// `2.1e-12` (eSpace) inside it. One of the hinge's two triangles sees the
+/// other rise, within rounding, on its front: the hinge is a concave,
+/// inactive edge for it, so its contact took the face normal, which is
+/// perpendicular to the true one. The skin's push away from the hinge then
+/// approached that face by the rounding of its direction (`u` times the
+/// 1.7e4 to the nearest vertex) and was stopped at once, twice. The face
+/// normal now stands in only where the centre is over the face.
+#[test]
+fn sphere_beside_the_hinge_of_a_sheet_folded_flat_stays_out() {
+    let a = [337773.0218945064, -93315.66135282409, -176074.89005969057];
+    let b = [-337782.65065348614, 93306.03259384441, 176038.0113007109];
+    let soup = [
+        [a, b, [161985.91102867477, -396015.52007377136, -352903.4563341928]],
+        [
+            b,
+            [-513569.76151931775, -209393.8261271029, -790.5549737912952],
+            [161985.91102867477, -396015.52007377136, -352903.4563341928],
+        ],
+        [a, b, [-513569.7615193084, -209393.826127126, -790.5549737610272]],
+        [
+            a,
+            [-513569.7615193084, -209393.826127126, -790.5549737610272],
+            [161985.91102868418, -396015.52007379447, -352903.4563341625],
+        ],
+    ];
+    let radii = [16.548170999431814, 38.51503591868198, 38.51503591868198];
+    let push = ([-112.10560126876553, -19.59821344810421, 19.78542909394529], [0.0; 3]);
+    let frames = [push, push, push, push, ([0.0, -3.851503591868198, 0.0], [0.0; 3]), ([0.0; 3], [0.0; 3])];
+    let start = [51658.99881221162, -14245.506304071732, -26922.642128773743];
+    let worst = worst_penetration::<f64>(&soup, radii, start, &frames);
+    assert!(worst <= 0.0, "penetration {worst:e}");
+    // What the case needs: the hinge (edge 0 of triangles 0 and 2) is
+    // inactive for one of them.
+    let vertices: Vec<[f64; 3]> = soup.iter().flatten().copied().collect();
+    let mesh = TriangleMesh::new(vertices, (0..4).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect()).unwrap();
+    assert!(!mesh.active(0).edge(0) || !mesh.active(2).edge(0), "the hinge must be inactive for one of its triangles");
+}
