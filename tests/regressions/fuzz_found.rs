@@ -558,9 +558,10 @@ fn sphere_gliding_along_an_edge_entering_just_past_its_end_is_stopped() {
 /// 38.5, 38.5) touching, from beside it and in its plane, the hinge of a
 /// sheet folded flat onto itself (four coplanar triangles of a flattened
 /// tetrahedron, 3e5 to 5e5 from the origin), pushed along the hinge, ended
-/// `2.1e-12` (eSpace) inside it. One of the hinge's two triangles sees the
-/// other rise, within rounding, on its front: the hinge is a concave,
-/// inactive edge for it, so its contact took the face normal, which is
+/// `2.1e-12` (eSpace) inside it. The sheet is folded to within `5e-14`
+/// radians of closed, the inside of the fold on the front of one of the
+/// hinge's two triangles: that one sees the other rise (by `3.9e-8`), and
+/// the hinge is a concave, inactive edge for it, so its contact took the face normal, which is
 /// perpendicular to the true one. The skin's push away from the hinge then
 /// approached that face by the rounding of its direction (`u` times the
 /// 1.7e4 to the nearest vertex) and was stopped at once, twice. The face
