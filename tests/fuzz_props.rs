@@ -17,7 +17,10 @@
 //!   fuzzer's decoder reached for the face only.
 //! * `robust_moves_*` (target `move_robust`): the robust response never
 //!   produces a NaN, never exceeds its iteration bound and never ends a
-//!   frame penetrating (exact check), from a start outside the geometry.
+//!   frame penetrating (exact check), from a start outside the geometry;
+//!   `robust_moves_beside_a_fold_hinge_*` aim at a body touching the hinge
+//!   of a closed or nearly closed fold from beside it, in the sheets'
+//!   plane (F20), which the random soups of the others do not build.
 //! * `obj_parser_*` (target `obj_parse`): OBJ text, random or built from
 //!   OBJ-like lines, gives an error or a valid mesh, never a panic.
 //!
@@ -309,6 +312,70 @@ fn move_case(offsets: Vec<f64>) -> impl Strategy<Value = MoveCase> {
         })
 }
 
+/// A body beside the hinge of a fold closed or nearly closed (the two
+/// sheets within `10^-3` to `10^-14` radians of each other, or exactly on
+/// each other) or open by up to 0.15 radians, in (or within `10^-8` of)
+/// the plane of the sheets and touching the hinge (gap 0 or `10^-k`),
+/// pushed along the hinge, towards it or anywhere, for four frames
+/// (fuzz finding F20: one triangle of such a hinge sees it concave, from
+/// the fold's inside, and its contact used to take the face normal there).
+/// Sheets `10` to `10^4` radii long, each quad wound either way, built in
+/// eSpace and mapped to the body's radii.
+fn hinge_case(offsets: Vec<f64>) -> impl Strategy<Value = MoveCase> {
+    (
+        ((0.0..1.0f64, 0.0..1.0f64), (0.0..1.0f64, 0.0..1.0f64)),
+        prop_oneof![
+            Just(0.0),
+            (3i32..15, any::<bool>()).prop_map(|(k, s)| if s { 1.0 } else { -1.0 } * 10f64.powi(-k)),
+            -0.15..0.15f64,
+        ],
+        (1.0..4.0f64, 1.0..4.0f64, any::<bool>(), any::<bool>()),
+        (prop_oneof![Just([1.0; 3]), prop::array::uniform3(-1.5..1.5f64).prop_map(|l| l.map(f64::exp2))], -0.4..0.4f64),
+        (
+            prop_oneof![Just(0.0), (8i32..16, -0.5..0.5f64).prop_map(|(k, x)| x * 10f64.powi(-k))],
+            prop_oneof![Just(0.0), (2i32..15).prop_map(|k| 10f64.powi(-k))],
+        ),
+        (0u8..3, (0.0..1.0f64, 0.0..1.0f64), -2.0..1.0f64, any::<bool>()),
+        (prop::sample::select(offsets), 0.0..1.0f64, 0.0..1.0f64),
+    )
+        .prop_map(
+            |((ha, sa), phi, (log_size, width, flip1, flip2), (radii, along), (theta, gap), push, (off, oa, ob))| {
+                let h = direction(ha.0, ha.1);
+                let (u0, w0) = frame(h);
+                let s = unit(add(mul(u0, sa.0 - 0.5), mul(w0, sa.1 - 0.5)));
+                let n = cross(h, s);
+                let s2 = add(mul(s, phi.cos()), mul(n, phi.sin()));
+                let (lh, w) = (10f64.powf(log_size), 10f64.powf(log_size) * width / 2.0);
+                let p0 = mul(h, -0.5 * lh);
+                let quad = |d: V, flip: bool| {
+                    let (a, b, c, e) =
+                        (p0, add(p0, mul(h, lh)), add(add(p0, mul(h, lh)), mul(d, w)), add(p0, mul(d, w)));
+                    if flip { vec![[a, c, b], [a, e, c]] } else { vec![[a, b, c], [a, c, e]] }
+                };
+                let mut soup = quad(s, flip1);
+                soup.extend(quad(s2, flip2));
+                let out = add(mul(s, -theta.cos()), mul(n, theta.sin()));
+                let centre = add(mul(h, along * lh), mul(out, 1.0 + gap));
+                let (kind, (da, db), log_speed, back) = push;
+                let dir = match kind {
+                    0 => mul(h, if back { -1.0 } else { 1.0 }),
+                    1 => unit(add(mul(out, -1.0), mul(direction(da, db), 0.5))),
+                    _ => direction(da, db),
+                };
+                let o = mul(direction(oa, ob), off);
+                let world = |p: V| add([p[0] * radii[0], p[1] * radii[1], p[2] * radii[2]], o);
+                let v = mul(dir, 10f64.powf(log_speed));
+                let velocity = [v[0] * radii[0], v[1] * radii[1], v[2] * radii[2]];
+                MoveCase {
+                    triangles: soup.into_iter().map(|t| t.map(world)).collect(),
+                    radii,
+                    start: world(centre),
+                    frames: vec![FrameInput { velocity, gravity: None }; 4],
+                }
+            },
+        )
+}
+
 fn assert_moves<T: Real>(case: &MoveCase) -> Result<(), TestCaseError> {
     match check_robust_moves::<T>(case) {
         Ok(Ok(()) | Err(Skip::StartsInside | Skip::PaddingCap)) => Ok(()),
@@ -408,6 +475,20 @@ proptest! {
 
     #[test]
     fn robust_moves_f64(case in move_case(vec![NEAR, 1.0e5])) {
+        assert_moves::<f64>(&case)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 20000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn robust_moves_beside_a_fold_hinge_f32(case in hinge_case(vec![NEAR, 1.0e3, 3.0e4])) {
+        assert_moves::<f32>(&case)?;
+    }
+
+    #[test]
+    fn robust_moves_beside_a_fold_hinge_f64(case in hinge_case(vec![NEAR, 1.0e5])) {
         assert_moves::<f64>(&case)?;
     }
 }
