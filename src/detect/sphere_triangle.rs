@@ -361,7 +361,21 @@ pub(crate) fn sweep_robust_within<T: Real>(
             // Touching: approached by more than `opts.approach_ulps`;
             // overlapping: by any amount.
             let overlapping = dist < one.clone() - &tol;
-            let approach = -dot(&sep, vel);
+            // Overlapping, only the approach's sign decides. An edge's
+            // direction, the perpendicular from its line, is off by about
+            // `u |from| / dist` (`from` its nearer end), without bound as
+            // the centre nears the line, and motion along the edge would
+            // carry that error into the sign (fuzz finding F21): only the
+            // motion across the line counts, which is the same in exact
+            // arithmetic (the direction is perpendicular to the edge, the
+            // face normal too).
+            let approach = match feature {
+                Feature::Edge(i) if overlapping => {
+                    let e = &edges[usize::from(i)];
+                    -dot(&sep, &(vel - e * (dot(vel, e) / norm_squared(e))))
+                }
+                _ => -dot(&sep, vel),
+            };
             let approached = if overlapping {
                 approach > zero
             } else {

@@ -596,3 +596,24 @@ fn sphere_beside_the_hinge_of_a_sheet_folded_flat_stays_out() {
     let mesh = TriangleMesh::new(vertices, (0..4).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect()).unwrap();
     assert!(!mesh.active(0).edge(0) || !mesh.active(2).edge(0), "the hinge must be inactive for one of its triangles");
 }
+
+/// F21 (ninth session, `sweep_triangle`, `f64`): a unit sphere whose centre
+/// lies `1e-9` from a triangle's edge (overlapping by almost its radius),
+/// moving `1e-2` along the edge and `1e-11` towards it, got no hit: the
+/// edge's direction, the perpendicular from its line computed `4.45` from
+/// the nearer end, was off by `9e-7`, and the motion along the edge times
+/// that error outweighed the approach. An overlapping edge contact now
+/// judges the approach from the motion across the edge's line.
+#[test]
+fn sphere_centred_on_an_edge_sliding_along_it_and_sinking_is_stopped() {
+    let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
+    let tri = Triangle::new(v([0.0, 0.0, 0.0]), v([0.0, 0.0, -8.798483613533179]), v([-8.798483613533179, 0.0, 0.0]));
+    let c = Candidate::lone(0, tri);
+    let base = v([0.0, -1.006415746818043e-9, -4.453847695128419]);
+    let vel = v([0.0, 1.0227078385503918e-11, 0.01022707691308393]);
+    let hit = sweep_robust(&c, &base, &vel, &DetectOptions::default(), None).expect("a hit");
+    assert_eq!((hit.t, hit.feature, hit.started_overlapping), (0.0, Feature::Edge(0), true), "{hit:?}");
+    // Moving away instead is no hit.
+    let away = v([0.0, -1.0227078385503918e-11, 0.01022707691308393]);
+    assert!(sweep_robust(&c, &base, &away, &DetectOptions::default(), None).is_none());
+}
