@@ -14,7 +14,9 @@
 //!   sphere gliding along a plane onto the face near a side, F16 and F17;
 //!   gliding along an edge and entering it within rounding of an end,
 //!   F19), which the random directions of the others rarely reach and the
-//!   fuzzer's decoder reached for the face only.
+//!   fuzzer's decoder reached for the face only;
+//!   `robust_sweep_overlapping_edge_*` at a third (a centre within `10^-k`
+//!   of an edge, moving along it, F21).
 //! * `robust_moves_*` (target `move_robust`): the robust response never
 //!   produces a NaN, never exceeds its iteration bound and never ends a
 //!   frame penetrating (exact check), from a start outside the geometry;
@@ -201,6 +203,37 @@ fn grazing_edge_case() -> impl Strategy<Value = (V, V, [V; 3])> {
             let glide = mul(along, if forward { speed } else { -speed });
             let vel = sub(glide, mul(w, speed * 10f64.powf(-log_ratio)));
             (sub(entry, mul(vel, tau)), vel, tri)
+        })
+}
+
+/// `(base, vel, tri)`: the unit sphere centred `10^-k` (`k` from 1 to 15)
+/// from a point of a triangle's edge, in any direction around it (over the
+/// face, beside it, under it), moving along the edge with a small part
+/// (`10^-b` of its speed, `b` from 0 to 12) towards or away from the edge,
+/// or none (fuzz finding F21: overlapping by almost its radius, the
+/// edge's direction is off by `u |from| / dist`, and the motion along the
+/// edge carried that error into the decision whether it approaches).
+fn overlapping_edge_case() -> impl Strategy<Value = (V, V, [V; 3])> {
+    (
+        triangle(),
+        (0usize..3, 0.05..0.95f64),
+        (1i32..16, 0.0..2.0 * PI),
+        (-1.0..1.5f64, prop_oneof![Just(None), (0.0..12.0f64, any::<bool>()).prop_map(Some)], any::<bool>()),
+    )
+        .prop_map(|(tri, (edge, at), (k, around), (log_speed, across, forward))| {
+            let (a, b, third) = (tri[edge], tri[(edge + 1) % 3], tri[(edge + 2) % 3]);
+            let along = unit(sub(b, a));
+            let n = unit(cross(sub(b, a), sub(third, a)));
+            let out = unit(cross(along, n));
+            let w = add(mul(out, around.cos()), mul(n, around.sin()));
+            let base = add(add(a, mul(sub(b, a), at)), mul(w, 10f64.powi(-k)));
+            let speed = 10f64.powf(log_speed);
+            let glide = mul(along, if forward { speed } else { -speed });
+            let vel = match across {
+                None => glide,
+                Some((b, towards)) => sub(glide, mul(w, speed * 10f64.powf(-b) * if towards { 1.0 } else { -1.0 })),
+            };
+            (base, vel, tri)
         })
 }
 
@@ -461,6 +494,16 @@ proptest! {
 
     #[test]
     fn robust_sweep_grazing_edge_f64((base, vel, tri) in grazing_edge_case()) {
+        assert_sweep::<f64>(base, vel, tri)?;
+    }
+
+    #[test]
+    fn robust_sweep_overlapping_edge_f32((base, vel, tri) in overlapping_edge_case()) {
+        assert_sweep::<f32>(base, vel, tri)?;
+    }
+
+    #[test]
+    fn robust_sweep_overlapping_edge_f64((base, vel, tri) in overlapping_edge_case()) {
         assert_sweep::<f64>(base, vel, tri)?;
     }
 }
