@@ -590,18 +590,28 @@ fn start_skin<T: Real>(case: &MoveCase, tri: &Triangle<f64>) -> f64 {
     (opts.padding_ulps * u * s * tilt_factor::<T>(&opts, tri) + opts.position_ulps * u * e).min(opts.max_padding)
 }
 
+/// The factor [`squeezed`] widens the padding skin by: an eighth, six
+/// `u s` of the skin's `48 u s`, for the rounding of its `f64`
+/// distances.
+pub const SQUEEZE_MARGIN: f64 = 1.125;
+
 /// Whether the start lies within the padding skin (the padding the response
 /// would keep from each, [`start_skin`]) of two triangles whose closest
 /// points are on opposite sides of the centre ([`Skip::StartsSqueezed`]), in
-/// eSpace and `f64` (a classification of the input, not a measurement: a
-/// triangle within rounding of the skin's edge may fall either way).
+/// eSpace and `f64`. This is a classification of the input, not a
+/// measurement: the distances here carry a few `u s` of `f64` rounding
+/// against a skin of `48 u s`, so the skin is widened by
+/// [`SQUEEZE_MARGIN`] and a start within rounding of its edge counts as
+/// squeezed (fuzz finding F22: a sphere `0.9991` skins from one wall of a
+/// zero-clearance slot and touching the other, classified free by the
+/// rounding of `1 + skin`, was then squeezed for the response).
 fn squeezed<T: Real>(case: &MoveCase) -> bool {
     let centre = Vec3::<f64>::zeros();
     let directions: Vec<Vec3<f64>> = espace_triangles(case)
         .filter_map(|tri| {
             let (q, _) = closest_point_on_triangle(&centre, &tri);
             let d = centre - q;
-            (d.norm() < 1.0 + start_skin::<T>(case, &tri)).then_some(d)
+            (d.norm() < 1.0 + SQUEEZE_MARGIN * start_skin::<T>(case, &tri)).then_some(d)
         })
         .collect();
     directions.iter().enumerate().any(|(i, a)| directions[i + 1..].iter().any(|b| a.dot(b) < 0.0))
