@@ -590,9 +590,9 @@ fn start_skin<T: Real>(case: &MoveCase, tri: &Triangle<f64>) -> f64 {
     (opts.padding_ulps * u * s * tilt_factor::<T>(&opts, tri) + opts.position_ulps * u * e).min(opts.max_padding)
 }
 
-/// The factor the squeeze test ([`Skip::StartsSqueezed`]) widens the padding skin by: an eighth, six
-/// `u s` of the skin's `48 u s`, for the rounding of its `f64`
-/// distances.
+/// The factor the squeeze test ([`Skip::StartsSqueezed`]) widens the
+/// padding skin by: an eighth, six `u s` of the skin's `48 u s`, for the
+/// rounding of its `f64` distances.
 pub const SQUEEZE_MARGIN: f64 = 1.125;
 
 /// Whether the start lies within the padding skin (the padding the response
