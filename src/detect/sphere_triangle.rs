@@ -167,7 +167,10 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   is clipped: the hit is the earliest moment, among those where the
 ///   plane distance is within `tol` of 1, at which the centre's projection
 ///   is inside the triangle (see `face_window`); otherwise the edge tests
-///   decide, which agree to second order.
+///   decide, which agree to second order. A window that reaches back to
+///   the start is a touch at `t = 0` and is met, like the touches above,
+///   only when `-n . vel > opts.approach_ulps * u * |vel|` (fuzz finding
+///   F24).
 /// * Edges and vertices: squared-distance quadratics from cross products
 ///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
 ///   `(e.v)^2`), their discriminants from Lagrange's identity (no
@@ -322,7 +325,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
     // Face interior: the plane reached with the contact point inside.
-    let face_hit = || face_contact(c, &rel, normal.as_ref()?, &plane_dist, base, vel, opts.touch_ulps, &wins);
+    let face_hit = || face_contact(c, &rel, normal.as_ref()?, (&plane_dist, base, vel, &swept.speed), opts, &wins);
     // Clear of the plane by more than the margin, the body cannot be
     // touching anything now: a face hit needs no closest point.
     if plane_dist > clear
@@ -609,10 +612,8 @@ fn face_contact<T: Real>(
     c: &Candidate<T>,
     rel: &Triangle<T>,
     n: &Vec3<T>,
-    plane_dist: &T,
-    base: &Vec3<T>,
-    vel: &Vec3<T>,
-    touch_ulps: f64,
+    (plane_dist, base, vel, speed): (&T, &Vec3<T>, &Vec3<T>, &T),
+    opts: &DetectOptions,
     wins: &impl Fn(&T) -> bool,
 ) -> Option<Hit<T>> {
     let (zero, one) = (T::zero(), T::one());
@@ -636,9 +637,10 @@ fn face_contact<T: Real>(
     let (t, contact) = match outside {
         None => (t, contact),
         Some(side) => {
-            let window = Window { t, nv, tol: T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel) };
+            let u = T::unit_roundoff();
+            let window = Window { t, nv: nv.clone(), tol: T::c(opts.touch_ulps * u) * scale(&contact, vel) };
             let t = face_window(c, rel, winding, vel, &contact, &window, side)?;
-            if !wins(&t) {
+            if !wins(&t) || (t <= zero && !(-nv > T::c(opts.approach_ulps * u) * speed)) {
                 return None;
             }
             let contact = vel * t.clone() - n;

@@ -23,7 +23,9 @@ pub use fauerby::FauerbyOptions;
 pub use linahan::LinahanOptions;
 pub use robust::RobustOptions;
 
-use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, Proximity, Reach, check_finite};
+use crate::detect::{
+    DetectOptions, Detection, Hit, Neighbourhood, Proximity, Reach, check_finite, earliest_hit_judged,
+};
 use crate::geom::{Ellipsoid, Vec3, norm};
 use crate::world::World;
 use crate::{Error, Real};
@@ -190,6 +192,15 @@ pub(crate) struct Frame<'w, T: Real> {
     /// The robust response's planes met in the current pass (a buffer kept
     /// across passes).
     pub planes: SmallVec<[Vec3<T>; 8]>,
+    /// The triangles whose contacts gave [`Frame::planes`], in the same
+    /// order: the collision query judges them with [`Frame::relaxed`].
+    pub met: SmallVec<[u32; 8]>,
+    /// The detection options for the triangles already met in a pass: a
+    /// touching contact is met again only when the motion approaches it by
+    /// more than the touching tolerance's share of the motion
+    /// ([`DetectOptions::approach_ulps`] at least
+    /// [`DetectOptions::touch_ulps`]; see `robust::slide`).
+    pub relaxed: DetectOptions,
     /// The robust response's resting contacts not met yet at the start of
     /// a pass (triangle index and proximity; a buffer kept across passes).
     pub seeds: SmallVec<[(u32, Proximity<T>); 8]>,
@@ -197,10 +208,15 @@ pub(crate) struct Frame<'w, T: Real> {
 
 impl<T: Real> Frame<'_, T> {
     /// Runs the collision query: the earliest hit of the unit sphere at
-    /// `base` moving by `vel`, counted as one iteration.
+    /// `base` moving by `vel`, counted as one iteration. The triangles in
+    /// [`Frame::met`] (none for the faithful responses) are judged with
+    /// [`Frame::relaxed`].
     pub fn check_collision(&mut self, base: &Vec3<T>, vel: &Vec3<T>) -> Option<Hit<T>> {
         self.trace.iterations += 1;
-        self.hood.earliest_hit(self.detection, base, vel, self.detect)
+        let (met, relaxed, detect) = (&self.met, &self.relaxed, self.detect);
+        earliest_hit_judged(self.detection, &self.hood.triangles, base, vel, |c| {
+            if met.contains(&c.index) { relaxed } else { detect }
+        })
     }
 
     /// Gathers the candidates again around eSpace position `p` (after a
@@ -261,6 +277,11 @@ pub fn move_body<T: Real>(
         start_magnitude,
         resting: SmallVec::new(),
         planes: SmallVec::new(),
+        met: SmallVec::new(),
+        relaxed: DetectOptions {
+            approach_ulps: options.detect.approach_ulps.max(options.detect.touch_ulps),
+            ..options.detect.clone()
+        },
         seeds: SmallVec::new(),
     };
     frame.hood.gather(world, body, &reach);

@@ -34,7 +34,17 @@
 //!    Planes the motion leaves do not constrain; a pair whose crease is
 //!    shorter than `parallel_ulps * u` (parallel or coplanar planes) is
 //!    never normalised or used.
-//! 5. Repeat with the projected displacement.
+//! 5. Repeat with the projected displacement. A triangle already met in
+//!    this pass is met again only when the displacement approaches it by
+//!    more than the touching tolerance's share of its length
+//!    (`approach_ulps = touch_ulps`, [`crate::detect::DetectOptions`]): a
+//!    displacement projected onto its plane approaches it only by the
+//!    projection's rounding, and meeting it again, sweep after sweep,
+//!    would add nothing to the cone and freeze the body (fuzz finding
+//!    F24). Over the sweep the body then nears it by at most that share,
+//!    `16 u |w|`, less than the padding (`48 u s`, `s` at least the
+//!    displacement's largest coordinate, so `|w| <= sqrt(3) s`), and the
+//!    skin is restored at the end of the pass.
 //!
 //! Bound: at most [`RobustOptions::max_iterations`] sweeps per pass (plus one
 //! push-out sweep after a grazing contact, not counted). Each sweep either
@@ -262,6 +272,7 @@ fn meet_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, w: &Vec3<T>, opt
         };
         frame.record(hit, normal.clone());
         frame.planes.push(normal);
+        frame.met.push(triangle);
         remaining = project_onto_cone(w, &frame.planes, opts);
     }
 }
@@ -310,6 +321,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
     let negligible = T::c(opts.feasible_ulps * T::unit_roundoff()) * norm(&w);
     let mut time_left = T::one();
     frame.planes.clear();
+    frame.met.clear();
     let mut remaining = meet_resting(frame, &p, &w, opts);
     for _ in 0..opts.max_iterations {
         if !(norm(&remaining) > negligible) {
@@ -337,6 +349,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             p = push_out(frame, p, &hit.normal, pad - &gap, &gap, opts);
         }
         let n = hit.normal.clone();
+        frame.met.push(hit.triangle);
         frame.record(hit, n.clone());
         frame.planes.push(n);
         time_left *= T::one() - t_move;

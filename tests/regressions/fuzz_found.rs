@@ -687,3 +687,78 @@ fn sphere_pushed_fast_along_a_zero_clearance_slot_stays_out() {
     let worst = worst_penetration::<f64>(&soup, [0.930572040929699; 3], start, &[push; 4]);
     assert!(worst <= 0.0, "penetration {worst:e}");
 }
+
+/// F24 (tenth session, `move_robust`, `f64`): a unit sphere `7,874` from
+/// the origin, wedged between the two walls of a V-shaped groove and a
+/// slope above it, pulled by a gravity of `1e6` per frame (diagonally),
+/// froze in the groove (every pass at the iteration cap) and ended frame 6
+/// `3.2e-13` inside a wall. The gravity pass met one wall, projected the
+/// motion onto it, and met that wall again at `t = 0`, sweep after sweep:
+/// the projected motion approached it by `0.3 u` of its length (the
+/// projection's rounding), and at that grazing angle the face test's
+/// window (F16) reaches back to the start, so the face counted as touched
+/// and approached. The wall was added to the cone again each time, the
+/// slide never moved, and each sweep's push-out, blocked by the other
+/// wall, walked the body half its remaining room towards that wall and the
+/// slope, until the final rounding of the position (`9e-13` at `7,874`)
+/// put it inside. A triangle already met in a pass is now met again only
+/// when the motion approaches it by more than the touching tolerance's
+/// share of the motion, which the face window's touch at the start also
+/// respects; the body slides down the groove and out of it.
+#[test]
+fn sphere_wedged_in_a_far_groove_under_strong_gravity_slides_out_and_stays_out() {
+    let (x0, x1, x2, y) = (-7894.0157480314965, -7874.0157480314965, -7854.0157480314965, 39.185882568359375);
+    let (fa, fb, fh, fy, fz) =
+        (-7914.710876740025, -7858.820619322969, 27.945128708528237, 17.1025328980857, -22.19670235036337);
+    let soup = [
+        [[x0, y, -30.0], [x0, y, 30.0], [x1, 0.0, 30.0]],
+        [[x0, y, -30.0], [x1, 0.0, 30.0], [x1, 0.0, -30.0]],
+        [[x1, 0.0, -30.0], [x1, 0.0, 30.0], [x2, y, 30.0]],
+        [[x1, 0.0, -30.0], [x2, y, 30.0], [x2, y, -30.0]],
+        [[fa, 0.125, 0.0], [fb, 0.125, 0.0], [fa, 0.125, fh]],
+        [[fb, 0.125, 0.0], [fb, 0.125, fh], [fa, 0.125, fh]],
+        [[fa, 0.125, 0.0], [fb, 0.125, 0.0], [fb, fy, fz]],
+        [[fa, 0.125, 0.0], [fb, fy, fz], [fa, fy, fz]],
+    ];
+    let g = [-577350.2691896259; 3];
+    let push = [-800.4412727665114, -317.85165062143597, 490.42527840098876];
+    let nudge = [-0.05000000074505806, -0.10000000149011612, 0.10000000149011612];
+    let frames = [[(push, g); 4], [([0.0; 3], g); 4], [(nudge, g); 4]].concat();
+    let start = [-7874.687834806799, 5.282389163970947, -20.0];
+    let worst = worst_penetration::<f64>(&soup, [1.0; 3], start, &frames);
+    assert!(worst <= 0.0, "penetration {worst:e}");
+    // The first frame's gravity pass slides down the groove and out of it
+    // (the groove ends at z = -30), instead of freezing in it.
+    let vertices: Vec<[f64; 3]> = soup.iter().flatten().copied().collect();
+    let indices = (0..soup.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    let world = World::<f64>::new(Arc::new(TriangleMesh::new(vertices, indices).unwrap()));
+    let body = Ellipsoid::<f64>::sphere(1.0).unwrap();
+    let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
+    let moved =
+        move_body(&world, &body, &v(start), &v(push), Some(&v(g)), &MoveOptions::new(Response::Robust)).unwrap();
+    assert!(moved.position.z < -1e5, "{:?}", moved.position);
+}
+
+/// F24's detection half: a sphere `1e-11` above a floor, moving `1e6`
+/// along it and sinking by `2e-11` (a relative approach of `0.2 u`), would
+/// reach the plane half way, far beyond the triangle; at that grazing angle
+/// the face test's window (the plane distance within its tolerance of 1,
+/// which grows with the speed) reaches back to the start, where the
+/// projection is inside, and the face is touched at `t = 0`. Like a touch
+/// found by the distance at the start, that touch is met only when the
+/// motion approaches by more than `DetectOptions::approach_ulps`.
+#[test]
+fn grazing_face_touch_at_the_start_respects_the_approach_tolerance() {
+    let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
+    let c = Candidate::lone(0, Triangle::new(v([-1.0, 0.0, -1.0]), v([1.0, 0.0, -1.0]), v([-1.0, 0.0, 1.0])));
+    let base = v([-0.25, 1.0 + 1e-11, -0.25]);
+    let vel = v([0.0, -2e-11, -1e6]);
+    let hit = sweep_robust(&c, &base, &vel, &DetectOptions::default(), None).expect("a touch at the start");
+    assert_eq!((hit.t, hit.feature), (0.0, Feature::Face), "{hit:?}");
+    let relaxed = DetectOptions { approach_ulps: 16.0, ..DetectOptions::default() };
+    assert_eq!(sweep_robust(&c, &base, &vel, &relaxed, None), None);
+    // Approaching by more than that, the touch is met.
+    let steeper = v([0.0, -1e-8, -1e6]);
+    let hit = sweep_robust(&c, &base, &steeper, &relaxed, None).expect("a touch at the start");
+    assert_eq!((hit.t, hit.feature), (0.0, Feature::Face), "{hit:?}");
+}
