@@ -79,9 +79,7 @@ pub struct DetectOptions {
     /// direction). Default 0: any approach. The robust response's push-outs
     /// use its [`crate::respond::RobustOptions::feasible_ulps`], so that a
     /// push along a wall the body touches is not stopped by the rounding of
-    /// that wall's direction; its sliding sweeps use `touch_ulps` for the
-    /// triangles already met in the pass, so that a motion projected onto a
-    /// wall is not stopped by the rounding of that projection.
+    /// that wall's direction.
     pub approach_ulps: f64,
 }
 
@@ -359,18 +357,6 @@ pub fn earliest_hit<'a, T: Real + 'a>(
     vel: &Vec3<T>,
     opts: &DetectOptions,
 ) -> Option<Hit<T>> {
-    earliest_hit_judged(detection, triangles, base, vel, |_| opts)
-}
-
-/// [`earliest_hit`] with each candidate judged by the robust detection's
-/// options that `opts_of` gives it.
-pub(crate) fn earliest_hit_judged<'a, 'o, T: Real + 'a>(
-    detection: Detection,
-    triangles: impl IntoIterator<Item = &'a Candidate<T>>,
-    base: &Vec3<T>,
-    vel: &Vec3<T>,
-    opts_of: impl Fn(&Candidate<T>) -> &'o DetectOptions,
-) -> Option<Hit<T>> {
     let mut best: Option<Hit<T>> = None;
     let swept = SweptBox::new(base, vel);
     for c in triangles {
@@ -378,7 +364,7 @@ pub(crate) fn earliest_hit_judged<'a, 'o, T: Real + 'a>(
         let hit = match detection {
             Detection::Fauerby => sweep_fauerby(&c.triangle, base, vel, c.index),
             Detection::Robust if swept.misses(c) => None,
-            Detection::Robust => sweep_robust_within(c, base, vel, &swept, opts_of(c), limit),
+            Detection::Robust => sweep_robust_within(c, base, vel, &swept, opts, limit),
         };
         if let Some(h) = hit {
             let better = match &best {

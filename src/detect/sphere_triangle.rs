@@ -167,10 +167,7 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   is clipped: the hit is the earliest moment, among those where the
 ///   plane distance is within `tol` of 1, at which the centre's projection
 ///   is inside the triangle (see `face_window`); otherwise the edge tests
-///   decide, which agree to second order. A window that reaches back to
-///   the start is a touch at `t = 0` and is met, like the touches above,
-///   only when `-n . vel > opts.approach_ulps * u * |vel|` (fuzz finding
-///   F24).
+///   decide, which agree to second order.
 /// * Edges and vertices: squared-distance quadratics from cross products
 ///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
 ///   `(e.v)^2`), their discriminants from Lagrange's identity (no
@@ -325,7 +322,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
     // Face interior: the plane reached with the contact point inside.
-    let face_hit = || face_contact(c, &rel, normal.as_ref()?, (&plane_dist, base, vel, &swept.speed), opts, &wins);
+    let face_hit = || face_contact(c, &rel, normal.as_ref()?, &plane_dist, base, vel, opts.touch_ulps, &wins);
     // Clear of the plane by more than the margin, the body cannot be
     // touching anything now: a face hit needs no closest point.
     if plane_dist > clear
@@ -415,9 +412,11 @@ pub(crate) fn sweep_robust_within<T: Real>(
     // late to win, or entered over the edge itself (the edge is hit first);
     // entered beyond one end, it rules out the other end (to reach that one
     // the centre would cross the slab of the near end inside the cylinder,
-    // touching the near end first). What this skips is decided on rounded
-    // quantities, but only where the vertex would be reached within a
-    // rounding of the edge's own entry time.
+    // touching the near end first), and both only when a touch on the edge
+    // is found there that wins (a touch that `edge_beyond_end` finds after
+    // the near end was reached proves nothing about it). What this skips
+    // is decided on rounded quantities, but only where the vertex would be
+    // reached within a rounding of the edge's own entry time.
     let mut best: Option<Touch<T>> = None;
     let better = |t: &T, best: &Option<Touch<T>>| match best {
         None => wins(t),
@@ -455,21 +454,24 @@ pub(crate) fn sweep_robust_within<T: Real>(
         let hi = lo.clone() + &one;
         // Entered beyond an end: maybe within rounding of it, or at a
         // grazing angle (see `edge_beyond_end`).
-        let touch = if f < lo || f > hi {
+        // A touch on the edge (at an end, or over the band) that comes too
+        // late to win rules out only the far end: the near one may be
+        // reached before it (fuzz finding F26: a band touch after the end
+        // of the sweep ruled out the vertex reached half way).
+        let (t, f) = if f < lo || f > hi {
             let magnitude = far.clone() + &swept.speed;
-            let Some(touch) = edge_beyond_end(e, a, vel, (&t, &f), (&lo, &hi), &magnitude, opts.touch_ulps) else {
+            let touch = edge_beyond_end(e, a, vel, (&t, &f), (&lo, &hi), &magnitude, opts.touch_ulps);
+            let Some(touch) = touch.filter(|(t, _)| better(t, &best)) else {
                 vertex_open[if f < lo { ends[1] } else { ends[0] }] = false;
                 continue;
             };
-            Some(touch).filter(|(t, _)| better(t, &best))
+            touch
         } else {
-            Some((t, f))
+            (t, f)
         };
         ends.iter().for_each(|&v| vertex_open[v] = false);
-        if let Some((t, f)) = touch {
-            let centre = vel * t.clone();
-            best = Some(Touch { t, point: a + e * f, centre, feature: Feature::Edge(i as u8) });
-        }
+        let centre = vel * t.clone();
+        best = Some(Touch { t, point: a + e * f, centre, feature: Feature::Edge(i as u8) });
     }
     let v2 = norm_squared(vel);
     for (i, v) in p.iter().enumerate().filter(|(i, _)| vertex_open[*i]) {
@@ -612,8 +614,10 @@ fn face_contact<T: Real>(
     c: &Candidate<T>,
     rel: &Triangle<T>,
     n: &Vec3<T>,
-    (plane_dist, base, vel, speed): (&T, &Vec3<T>, &Vec3<T>, &T),
-    opts: &DetectOptions,
+    plane_dist: &T,
+    base: &Vec3<T>,
+    vel: &Vec3<T>,
+    touch_ulps: f64,
     wins: &impl Fn(&T) -> bool,
 ) -> Option<Hit<T>> {
     let (zero, one) = (T::zero(), T::one());
@@ -637,10 +641,9 @@ fn face_contact<T: Real>(
     let (t, contact) = match outside {
         None => (t, contact),
         Some(side) => {
-            let u = T::unit_roundoff();
-            let window = Window { t, nv: nv.clone(), tol: T::c(opts.touch_ulps * u) * scale(&contact, vel) };
+            let window = Window { t, nv, tol: T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel) };
             let t = face_window(c, rel, winding, vel, &contact, &window, side)?;
-            if !wins(&t) || (t <= zero && !(-nv > T::c(opts.approach_ulps * u) * speed)) {
+            if !wins(&t) {
                 return None;
             }
             let contact = vel * t.clone() - n;

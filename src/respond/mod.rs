@@ -23,9 +23,7 @@ pub use fauerby::FauerbyOptions;
 pub use linahan::LinahanOptions;
 pub use robust::RobustOptions;
 
-use crate::detect::{
-    DetectOptions, Detection, Hit, Neighbourhood, Proximity, Reach, check_finite, earliest_hit_judged,
-};
+use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, Proximity, Reach, check_finite, earliest_hit};
 use crate::geom::{Ellipsoid, Vec3, norm};
 use crate::world::World;
 use crate::{Error, Real};
@@ -193,14 +191,8 @@ pub(crate) struct Frame<'w, T: Real> {
     /// across passes).
     pub planes: SmallVec<[Vec3<T>; 8]>,
     /// The triangles whose contacts gave [`Frame::planes`], in the same
-    /// order: the collision query judges them with [`Frame::relaxed`].
+    /// order (see `robust::slide`).
     pub met: SmallVec<[u32; 8]>,
-    /// The detection options for the triangles already met in a pass: a
-    /// touching contact is met again only when the motion approaches it by
-    /// more than the touching tolerance's share of the motion
-    /// ([`DetectOptions::approach_ulps`] at least
-    /// [`DetectOptions::touch_ulps`]; see `robust::slide`).
-    pub relaxed: DetectOptions,
     /// The robust response's resting contacts not met yet at the start of
     /// a pass (triangle index and proximity; a buffer kept across passes).
     pub seeds: SmallVec<[(u32, Proximity<T>); 8]>,
@@ -208,15 +200,21 @@ pub(crate) struct Frame<'w, T: Real> {
 
 impl<T: Real> Frame<'_, T> {
     /// Runs the collision query: the earliest hit of the unit sphere at
-    /// `base` moving by `vel`, counted as one iteration. The triangles in
-    /// [`Frame::met`] (none for the faithful responses) are judged with
-    /// [`Frame::relaxed`].
+    /// `base` moving by `vel`, counted as one iteration.
     pub fn check_collision(&mut self, base: &Vec3<T>, vel: &Vec3<T>) -> Option<Hit<T>> {
         self.trace.iterations += 1;
-        let (met, relaxed, detect) = (&self.met, &self.relaxed, self.detect);
-        earliest_hit_judged(self.detection, &self.hood.triangles, base, vel, |c| {
-            if met.contains(&c.index) { relaxed } else { detect }
-        })
+        self.hood.earliest_hit(self.detection, base, vel, self.detect)
+    }
+
+    /// [`Frame::check_collision`] without the triangles in `skip` (by
+    /// index).
+    pub fn check_collision_skipping(&mut self, base: &Vec3<T>, vel: &Vec3<T>, skip: &[u32]) -> Option<Hit<T>> {
+        if skip.is_empty() {
+            return self.check_collision(base, vel);
+        }
+        self.trace.iterations += 1;
+        let kept = self.hood.triangles.iter().filter(|c| !skip.contains(&c.index));
+        earliest_hit(self.detection, kept, base, vel, self.detect)
     }
 
     /// Gathers the candidates again around eSpace position `p` (after a
@@ -278,10 +276,6 @@ pub fn move_body<T: Real>(
         resting: SmallVec::new(),
         planes: SmallVec::new(),
         met: SmallVec::new(),
-        relaxed: DetectOptions {
-            approach_ulps: options.detect.approach_ulps.max(options.detect.touch_ulps),
-            ..options.detect.clone()
-        },
         seeds: SmallVec::new(),
     };
     frame.hood.gather(world, body, &reach);

@@ -35,16 +35,16 @@
 //!    shorter than `parallel_ulps * u` (parallel or coplanar planes) is
 //!    never normalised or used.
 //! 5. Repeat with the projected displacement. A triangle already met in
-//!    this pass is met again only when the displacement approaches it by
-//!    more than the touching tolerance's share of its length
-//!    (`approach_ulps = touch_ulps`, [`crate::detect::DetectOptions`]): a
-//!    displacement projected onto its plane approaches it only by the
-//!    projection's rounding, and meeting it again, sweep after sweep,
-//!    would add nothing to the cone and freeze the body (fuzz finding
-//!    F24). Over the sweep the body then nears it by at most that share,
-//!    `16 u |w|`, less than the padding (`48 u s`, `s` at least the
-//!    displacement's largest coordinate, so `|w| <= sqrt(3) s`), and the
-//!    skin is restored at the end of the pass.
+//!    this pass and touched again at the start of a sweep is skipped by
+//!    the next sweep when the displacement approaches it by no more than
+//!    the touching tolerance's share of its length (`touch_ulps * u`, see
+//!    [`crate::detect::DetectOptions`]): a displacement projected onto its
+//!    plane approaches it only by the projection's rounding, and meeting
+//!    it again, sweep after sweep, would add nothing to the cone and
+//!    freeze the body (fuzz finding F24). Over the sweep the body then
+//!    nears it by at most that share, `16 u |w|`, less than the padding
+//!    (`48 u s`, `s` at least the displacement's largest coordinate, so
+//!    `|w| <= sqrt(3) s`), and the skin is restored at the end of the pass.
 //!
 //! Bound: at most [`RobustOptions::max_iterations`] sweeps per pass (plus one
 //! push-out sweep after a grazing contact, not counted). Each sweep either
@@ -75,6 +75,7 @@ use super::{Frame, StopReason};
 use crate::Real;
 use crate::detect::{Candidate, DetectOptions, Detection, Hit, proximity};
 use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
+use smallvec::SmallVec;
 use std::borrow::Cow;
 
 /// The robust response's tolerances. Distances are eSpace units (radius 1);
@@ -323,15 +324,23 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
     frame.planes.clear();
     frame.met.clear();
     let mut remaining = meet_resting(frame, &p, &w, opts);
+    // Triangles met earlier in the pass that a sweep from `p` along
+    // `remaining` only grazes (see `grazes_met`): the next sweep skips them.
+    let mut grazed: SmallVec<[u32; 4]> = SmallVec::new();
     for _ in 0..opts.max_iterations {
         if !(norm(&remaining) > negligible) {
             frame.trace.stop = StopReason::Blocked;
             return settle(frame, p, opts);
         }
-        let Some(hit) = frame.check_collision(&p, &remaining) else {
+        let Some(hit) = frame.check_collision_skipping(&p, &remaining, &grazed) else {
             frame.trace.stop = StopReason::Free;
             return settle(frame, p + remaining, opts);
         };
+        if grazes_met(frame, &hit, &remaining) {
+            grazed.push(hit.triangle);
+            continue;
+        }
+        grazed.clear();
         let pad = padding(frame.start_magnitude, &p, &remaining, &candidate_e(frame, hit.triangle), opts);
         // The gap to the contact along its normal now. Within the resting
         // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
@@ -357,6 +366,27 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
     }
     frame.trace.stop = StopReason::IterationCap;
     settle(frame, p, opts)
+}
+
+/// Whether `hit`, from a sweep along `remaining`, is a touch at the start of
+/// a triangle already met in this pass that the motion approaches by no
+/// more than the detection's touching tolerance's share of its length,
+/// `touch_ulps * u * |remaining|` (fuzz finding F24).
+///
+/// A displacement projected onto a triangle's plane still approaches it by
+/// the projection's rounding, and the detection meets a touch at the start
+/// at any approach (at a grazing angle also through the face test's
+/// window, whose tolerance grows with the speed). Met again, the triangle
+/// adds nothing to the cone, the projection is the same, and so is the next
+/// sweep's answer, until the iteration cap: the body freezes. Skipping it
+/// for the next sweep (from the same position, along the same motion) is
+/// safe: the distance to a convex triangle is convex along the motion, so
+/// over the sweep the body nears it by at most that share, less than the
+/// padding, and the skin is restored at the end of the pass.
+fn grazes_met<T: Real>(frame: &Frame<'_, T>, hit: &Hit<T>, remaining: &Vec3<T>) -> bool {
+    hit.t <= T::zero()
+        && frame.met.contains(&hit.triangle)
+        && !(-dot(remaining, &hit.normal) > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * norm(remaining))
 }
 
 /// The end of a pass (and the start of the first): restores the skin and
