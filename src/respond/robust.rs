@@ -326,7 +326,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
     let mut remaining = meet_resting(frame, &p, &w, opts);
     // Triangles met earlier in the pass that a sweep from `p` along
     // `remaining` only grazes (see `grazes_met`): the next sweep skips them.
-    let mut grazed: SmallVec<[u32; 4]> = SmallVec::new();
+    let mut grazed: SmallVec<[u32; 8]> = SmallVec::new();
     for _ in 0..opts.max_iterations {
         if !(norm(&remaining) > negligible) {
             frame.trace.stop = StopReason::Blocked;
