@@ -103,7 +103,8 @@ pub enum Skip {
     /// rounding (a zero-clearance slot) no representable position other
     /// than the start may lie outside both: the body cannot be moved
     /// without an exact penetration of the order of the coordinates'
-    /// rounding. See docs/fuzzing.md, F3.
+    /// rounding. The skin is the padding of the first frame's passes,
+    /// which grows with their displacement (docs/fuzzing.md, F3 and F27).
     StartsSqueezed,
     /// The robust response's padding would reach its cap
     /// (`RobustOptions::max_padding`): see [`padding_in_range`].
@@ -578,16 +579,22 @@ fn tilt_factor<T: Real>(opts: &RobustOptions, tri: &Triangle<f64>) -> f64 {
 }
 
 /// The robust padding at the start, in eSpace units, for a contact on
-/// the triangle `tri` (eSpace, relative to the start): as the response
-/// computes it (`src/respond/robust.rs`, `padding`), with `s` the larger of
-/// 1 and the distance to the triangle's nearest vertex (largest coordinate)
-/// times its tilt factor, and the `position_ulps u |start|` term; capped.
+/// the triangle `tri` (eSpace, relative to the start) during the first
+/// frame: as the response computes it (`src/respond/robust.rs`,
+/// `padding`), with `s` the largest of 1, the distance to the triangle's
+/// nearest vertex and the first frame's displacements (largest
+/// coordinates; a pass's padding grows with its displacement, fuzz finding
+/// F27), times its tilt factor, and the `position_ulps u |start|` term;
+/// capped.
 fn start_skin<T: Real>(case: &MoveCase, tri: &Triangle<f64>) -> f64 {
     let opts = RobustOptions::default();
     let u = T::unit_roundoff();
-    let e = (0..3).map(|i| (case.start[i] / case.radii[i]).abs()).fold(0.0, f64::max);
-    let s = [&tri.a, &tri.b, &tri.c].iter().map(|v| v.amax()).fold(f64::INFINITY, f64::min).max(1.0);
-    (opts.padding_ulps * u * s * tilt_factor::<T>(&opts, tri) + opts.position_ulps * u * e).min(opts.max_padding)
+    let amax = |v: &[f64; 3]| (0..3).map(|i| (v[i] / case.radii[i]).abs()).fold(0.0, f64::max);
+    let moved = case.frames.first().map_or(0.0, |f| amax(&f.velocity).max(f.gravity.as_ref().map_or(0.0, amax)));
+    let nearest = [&tri.a, &tri.b, &tri.c].iter().map(|v| v.amax()).fold(f64::INFINITY, f64::min);
+    let s = nearest.max(moved).max(1.0);
+    (opts.padding_ulps * u * s * tilt_factor::<T>(&opts, tri) + opts.position_ulps * u * amax(&case.start))
+        .min(opts.max_padding)
 }
 
 /// The factor the squeeze test ([`Skip::StartsSqueezed`]) widens the
