@@ -551,21 +551,18 @@ pub fn padding_in_range<T: Real>(case: &MoveCase) -> bool {
     let e = |v: &[f64; 3]| (0..3).map(|i| (v[i] / case.radii[i]).abs()).fold(0.0, f64::max);
     let travel: f64 = case.frames.iter().map(|f| e(&f.velocity) + f.gravity.as_ref().map_or(0.0, e)).sum();
     let reach = e(&case.start) + travel;
-    let worst = espace_triangles(case).fold(travel.max(1.0), |worst, tri| {
+    let worst = espace_triangles(case, &case.start).fold(travel.max(1.0), |worst, tri| {
         let far = [&tri.a, &tri.b, &tri.c].iter().map(|v| v.amax()).fold(0.0, f64::max);
         worst.max((far + travel).max(1.0) * tilt_factor::<T>(&opts, &tri))
     });
     opts.position_ulps * u * reach + opts.padding_ulps * u * worst <= opts.max_padding
 }
 
-/// The triangles of `case` in eSpace relative to its start, in `f64`.
-fn espace_triangles(case: &MoveCase) -> impl Iterator<Item = Triangle<f64>> + '_ {
+/// The triangles of `case` in eSpace relative to the position `at`, in
+/// `f64`.
+fn espace_triangles<'a>(case: &'a MoveCase, at: &'a [f64; 3]) -> impl Iterator<Item = Triangle<f64>> + 'a {
     let e = |v: &[f64; 3]| {
-        vec3::<f64>(
-            (v[0] - case.start[0]) / case.radii[0],
-            (v[1] - case.start[1]) / case.radii[1],
-            (v[2] - case.start[2]) / case.radii[2],
-        )
+        vec3::<f64>((v[0] - at[0]) / case.radii[0], (v[1] - at[1]) / case.radii[1], (v[2] - at[2]) / case.radii[2])
     };
     case.triangles.iter().map(move |t| Triangle::new(e(&t[0]), e(&t[1]), e(&t[2])))
 }
@@ -578,23 +575,22 @@ fn tilt_factor<T: Real>(opts: &RobustOptions, tri: &Triangle<f64>) -> f64 {
     opts.tilt_factor(Candidate::lone(0, Triangle::new(t(&tri.a), t(&tri.b), t(&tri.c))).tilt())
 }
 
-/// The robust padding at the start, in eSpace units, for a contact on
-/// the triangle `tri` (eSpace, relative to the start) during the first
-/// frame: as the response computes it (`src/respond/robust.rs`,
-/// `padding`), with `s` the largest of 1, the distance to the triangle's
-/// nearest vertex and the first frame's displacements (largest
-/// coordinates; a pass's padding grows with its displacement, fuzz finding
-/// F27), times its tilt factor, and the `position_ulps u |start|` term;
-/// capped.
-fn start_skin<T: Real>(case: &MoveCase, tri: &Triangle<f64>) -> f64 {
+/// The robust padding at the position `at` (world) at the start of frame
+/// `frame`, in eSpace units, for a contact on the triangle `tri` (eSpace,
+/// relative to `at`): as the response computes it
+/// (`src/respond/robust.rs`, `padding`), with `s` the largest of 1, the
+/// distance to the triangle's nearest vertex and the frame's displacements
+/// (largest coordinates; a pass's padding grows with its displacement, fuzz
+/// finding F27), times its tilt factor, and the `position_ulps u |at|`
+/// term; capped.
+fn skin<T: Real>(case: &MoveCase, at: &[f64; 3], frame: usize, tri: &Triangle<f64>) -> f64 {
     let opts = RobustOptions::default();
     let u = T::unit_roundoff();
     let amax = |v: &[f64; 3]| (0..3).map(|i| (v[i] / case.radii[i]).abs()).fold(0.0, f64::max);
-    let moved = case.frames.first().map_or(0.0, |f| amax(&f.velocity).max(f.gravity.as_ref().map_or(0.0, amax)));
+    let moved = case.frames.get(frame).map_or(0.0, |f| amax(&f.velocity).max(f.gravity.as_ref().map_or(0.0, amax)));
     let nearest = [&tri.a, &tri.b, &tri.c].iter().map(|v| v.amax()).fold(f64::INFINITY, f64::min);
     let s = nearest.max(moved).max(1.0);
-    (opts.padding_ulps * u * s * tilt_factor::<T>(&opts, tri) + opts.position_ulps * u * amax(&case.start))
-        .min(opts.max_padding)
+    (opts.padding_ulps * u * s * tilt_factor::<T>(&opts, tri) + opts.position_ulps * u * amax(at)).min(opts.max_padding)
 }
 
 /// The factor the squeeze test ([`Skip::StartsSqueezed`]) widens the
@@ -602,27 +598,45 @@ fn start_skin<T: Real>(case: &MoveCase, tri: &Triangle<f64>) -> f64 {
 /// rounding of its `f64` distances.
 pub const SQUEEZE_MARGIN: f64 = 1.125;
 
-/// Whether the start lies within the padding skin (the padding the response
-/// would keep from each, [`start_skin`]) of two triangles whose closest
-/// points are on opposite sides of the centre ([`Skip::StartsSqueezed`]), in
-/// eSpace and `f64`. This is a classification of the input, not a
+/// Whether the position `at` (world), at the start of frame `frame`, lies
+/// within the padding skin (the padding the response would keep from each,
+/// [`skin`]) of two triangles whose closest points, seen from the centre,
+/// are in directions `d_1`, `d_2` with `d_1 . d_2 < -opposed |d_1| |d_2|`
+/// (`opposed = 0` for the start, [`Skip::StartsSqueezed`]:
+/// on opposite sides; [`SLOT_OPPOSED`] for a later frame), in eSpace and
+/// `f64`. This is a classification of the input, not a
 /// measurement: the distances here carry a few `u s` of `f64` rounding
 /// against a skin of `48 u s`, so the skin is widened by
 /// [`SQUEEZE_MARGIN`] and a start within rounding of its edge counts as
 /// squeezed (fuzz finding F22: a sphere `0.9991` skins from one wall of a
 /// zero-clearance slot and touching the other, classified free by the
 /// rounding of `1 + skin`, was then squeezed for the response).
-fn squeezed<T: Real>(case: &MoveCase) -> bool {
+fn squeezed<T: Real>(case: &MoveCase, at: &[f64; 3], frame: usize, opposed: f64) -> bool {
     let centre = Vec3::<f64>::zeros();
-    let directions: Vec<Vec3<f64>> = espace_triangles(case)
+    let directions: Vec<Vec3<f64>> = espace_triangles(case, at)
         .filter_map(|tri| {
             let (q, _) = closest_point_on_triangle(&centre, &tri);
             let d = centre - q;
-            (d.norm() < 1.0 + SQUEEZE_MARGIN * start_skin::<T>(case, &tri)).then_some(d)
+            (d.norm() < 1.0 + SQUEEZE_MARGIN * skin::<T>(case, at, frame, &tri)).then_some(d)
         })
         .collect();
-    directions.iter().enumerate().any(|(i, a)| directions[i + 1..].iter().any(|b| a.dot(b) < 0.0))
+    directions
+        .iter()
+        .enumerate()
+        .any(|(i, a)| directions[i + 1..].iter().any(|b| a.dot(b) < -opposed * a.norm() * b.norm()))
 }
+
+/// How nearly opposite (the cosine of the angle between the directions to
+/// their closest points, negated) two triangles within the padding skin of
+/// a body at the start of a later frame must be for it to count as
+/// squeezed: parallel to within about `0.08` degrees, the walls of a slot
+/// (fuzz finding F28: a body that slid into a zero-clearance slot whose
+/// walls are `2e-7` from parallel, where the crease of the two walls'
+/// planes carries `u / 2e-7` of direction error, ended `1e-14` inside one).
+/// Looser than the start's test, which counts any two triangles on opposite
+/// sides: a body resting in a wedge or groove, within the padding of both
+/// walls, can still back out of it, and stays checked.
+pub const SLOT_OPPOSED: f64 = 1.0 - 1e-6;
 
 /// Rounds a case into `T` and checks its range and its start.
 ///
@@ -660,7 +674,7 @@ pub fn prepare<T: Real>(case: &MoveCase) -> Result<Prepared<T>, Skip> {
         Some(p) if p > 0.0 => return Err(Skip::StartsInside),
         // `penetration` gives `None` when nothing lies within `1e-6` of the
         // body, but the skin may reach further (fuzz finding F25).
-        _ if squeezed::<T>(case) => {
+        _ if squeezed::<T>(case, &case.start, 0, 0.0) => {
             return Err(Skip::StartsSqueezed);
         }
         _ => {}
@@ -688,7 +702,10 @@ fn f64s<T: Real>(v: &Vec3<T>) -> [f64; 3] {
 /// Plays the frames of `case` with `response` from its prepared start in
 /// backend `T`, and returns the first failed frame (`None`: every frame
 /// ended finite and outside the geometry; for the robust response also
-/// within the iteration bound). Stops at the first failure.
+/// within the iteration bound). Stops at the first failure, and for the
+/// robust response before the first later frame that starts squeezed in
+/// a slot (the body has moved into a slot narrower than twice the padding,
+/// [`SLOT_OPPOSED`]: out of range from there on, as a squeezed start is).
 #[must_use]
 pub fn play<T: Real>(case: &MoveCase, prepared: &Prepared<T>, response: Response) -> Option<FrameFailure> {
     let options = MoveOptions::new(response);
@@ -699,6 +716,9 @@ pub fn play<T: Real>(case: &MoveCase, prepared: &Prepared<T>, response: Response
         let zero = Vec3::<T>::zeros();
         let bound = iteration_bound(&vel, gravity.as_ref().unwrap_or(&zero));
         let fail = |failure: Failure, to: [f64; 3]| Some(FrameFailure { frame: k, from: f64s(&pos), to, failure });
+        if response == Response::Robust && k > 0 && squeezed::<T>(case, &f64s(&pos), k, SLOT_OPPOSED) {
+            return None;
+        }
         let moved = match move_body(&prepared.world, &prepared.body, &pos, &vel, gravity.as_ref(), &options) {
             Ok(m) => m,
             Err(e) => return fail(Failure::Error(e.to_string()), [f64::NAN; 3]),
