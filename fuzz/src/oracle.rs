@@ -41,7 +41,9 @@
 //! `[MIN_RADIUS, MAX_RADIUS]` with a largest/smallest ratio of at most
 //! `MAX_RADIUS_RATIO`; for moves, the robust response's padding below its
 //! cap ([`padding_in_range`]) and a start not squeezed within the padding
-//! of two opposite triangles ([`Skip::StartsSqueezed`]); for the sweep, a non-degenerate triangle with shape
+//! of two opposite triangles ([`Skip::StartsSqueezed`]), the frames checked
+//! up to the first later one that starts squeezed in a slot
+//! ([`SLOT_OPPOSED`]); for the sweep, a non-degenerate triangle with shape
 //! factor `k = max |edge|^2 / |(b - a) x (c - a)|` at most `MAX_SHAPE`
 //! (`k >= 2 / sqrt(3)`, equality for an equilateral triangle; `k = 1000`
 //! is an angle of about 0.1 degrees).
