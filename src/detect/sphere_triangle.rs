@@ -622,8 +622,11 @@ fn face_contact<T: Real>(
 ) -> Option<Hit<T>> {
     let (zero, one) = (T::zero(), T::one());
     let nv = dot(n, vel);
-    if !(nv < zero && *plane_dist > one) {
+    if !(nv < zero) {
         return None;
+    }
+    if !(*plane_dist > one) {
+        return face_entered_touching(c, rel, n, plane_dist, base, vel, nv, touch_ulps, wins);
     }
     let t = (plane_dist.clone() - &one) / -nv.clone();
     if !wins(&t) {
@@ -650,6 +653,61 @@ fn face_contact<T: Real>(
             (t, contact)
         }
     };
+    Some(Hit {
+        t,
+        point: contact + base,
+        normal: n.clone(),
+        feature: Feature::Face,
+        triangle: c.index,
+        started_overlapping: false,
+    })
+}
+
+/// For [`face_contact`], when the centre already lies within 1 of the plane
+/// (`plane_dist <= 1`), beside the triangle (a touch of the triangle at the
+/// start was ruled out before), approaching it (`nv = n . vel < 0`): the
+/// face contact at which the centre's projection enters the triangle while
+/// the plane distance is still within the touching tolerance
+/// `tol = touch_ulps u s` of 1 (`s` the magnitude at the start, [`scale`]),
+/// if it does (fuzz finding F29: a sphere `1.5e-14` inside the plane of a
+/// triangle beside it slid into the triangle unseen, its edges'
+/// discriminants, at tangency, rounded negative). The window is
+/// `[0, t_hi]`, `t_hi` the time the plane distance falls to `1 - tol`; see
+/// [`face_window`].
+#[cold]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn face_entered_touching<T: Real>(
+    c: &Candidate<T>,
+    rel: &Triangle<T>,
+    n: &Vec3<T>,
+    plane_dist: &T,
+    base: &Vec3<T>,
+    vel: &Vec3<T>,
+    nv: T,
+    touch_ulps: f64,
+    wins: &impl Fn(&T) -> bool,
+) -> Option<Hit<T>> {
+    let zero = T::zero();
+    let tol = T::c(touch_ulps * T::unit_roundoff()) * scale(n, vel);
+    let reach = plane_dist.clone() - T::one() + tol;
+    if !(reach > zero) {
+        return None;
+    }
+    let contact = -n.clone();
+    let winding = c.normal.as_ref().unwrap_or(n);
+    let p = [&rel.a, &rel.b, &rel.c];
+    let side = (0..3)
+        .find_map(|i| {
+            let o = dot(&cross(&c.edges[i], &(&contact - p[i])), winding);
+            (o < zero).then_some((i, o))
+        })
+        .unwrap_or((0, zero.clone()));
+    let t = face_window(c, rel, winding, vel, &contact, &Window { t: zero, nv, tol: reach }, side)?;
+    if !wins(&t) {
+        return None;
+    }
+    let contact = vel * t.clone() - n;
     Some(Hit {
         t,
         point: contact + base,

@@ -766,3 +766,30 @@ fn sweep_towards_a_corner_whose_edge_is_touched_only_after_the_sweep_hits_the_co
     let d = (base + vel * hit.t - v(corner)).norm();
     assert!((d - 1.0).abs() < 1e-15, "{hit:?}, distance {d}");
 }
+
+/// F29 (tenth session, `compare_responses`, `f64`): an ellipsoid in a
+/// zero-clearance slot, `1.5e-14` inside the plane of the upper wall's
+/// triangle but beside it (its nearest feature a corner `8.7e-14` beyond
+/// touching), slid into the triangle and ended `3.4e-12` inside it. The face
+/// test needed the plane ahead (`plane_dist > 1`); the edges from the
+/// corner are reached at tangency, where their discriminants rounded
+/// negative and ruled out the corner too. A centre within the touching
+/// tolerance inside the plane, beside the triangle, now meets the face
+/// where its projection enters the triangle.
+#[test]
+fn sphere_touching_the_plane_beside_a_triangle_sliding_into_it_is_stopped() {
+    let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
+    let tri = Triangle::new(
+        v([9.876710619659537, -15.837320975501218, 0.9999996007915154]),
+        v([38.4925254655041, 4.063662464191054, 0.9999984506016413]),
+        v([4.56480867312514e-7, -1.0652242326434255e-10, 0.9999999999999671]),
+    );
+    let base = v([-6.157925802795419e-22, 1.6297735359618008e-24, -1.5299816564603123e-14]);
+    let vel = v([0.2483715661157211, 1.0648566348131227e-18, -9.996549103753127e-9]);
+    let hit = sweep_robust(&Candidate::lone(0, tri), &base, &vel, &DetectOptions::default(), None).expect("a hit");
+    assert_eq!(hit.feature, Feature::Face, "{hit:?}");
+    // The projection enters the triangle beside its corner, which lies
+    // `4.6e-7` along x (`1.8e-6` of this sweep): the exact touch is at
+    // `t = 1.674e-6`.
+    assert!(hit.t > 1e-6 && hit.t < 3e-6, "{hit:?}");
+}
