@@ -631,14 +631,18 @@ fn squeezed<T: Real>(case: &MoveCase, at: &[f64; 3], frame: usize, opposed: f64)
 /// How nearly opposite (the cosine of the angle between the directions to
 /// their closest points, negated) two triangles within the padding skin of
 /// a body at the start of a later frame must be for it to count as
-/// squeezed: parallel to within about `0.08` degrees, the walls of a slot
-/// (fuzz finding F28: a body that slid into a zero-clearance slot whose
-/// walls are `2e-7` from parallel, where the crease of the two walls'
-/// planes carries `u / 2e-7` of direction error, ended `1e-14` inside one).
-/// Looser than the start's test, which counts any two triangles on opposite
-/// sides: a body resting in a wedge or groove, within the padding of both
-/// walls, can still back out of it, and stays checked.
-pub const SLOT_OPPOSED: f64 = 1.0 - 1e-6;
+/// squeezed: within about 5 degrees of opposite, the walls of a slot, or of
+/// a slot whose wall ends beside the body (fuzz findings F28: a body that
+/// slid into a zero-clearance slot whose walls are `2e-7` from parallel,
+/// where the crease of the two walls' planes carries `u / 2e-7` of
+/// direction error, ended `1e-14` inside one; F30: in `f32`, a body `2.6e-5`
+/// from both walls of a slot, one of them met at its edge, `1` degree from
+/// opposite, ended `0.2` ulp inside). Narrower than the start's test, which
+/// counts any two triangles on opposite sides: a body resting in a groove
+/// or a wedge of more than 5 degrees, within the padding of both walls,
+/// can still back out of it, and stays checked. A classification, not a
+/// bound.
+pub const SLOT_OPPOSED: f64 = 0.996;
 
 /// Rounds a case into `T` and checks its range and its start.
 ///
