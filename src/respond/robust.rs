@@ -371,7 +371,9 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
 /// Whether `hit`, from a sweep along `remaining`, is a touch at the start of
 /// a triangle already met in this pass that the motion approaches by no
 /// more than the detection's touching tolerance's share of its length,
-/// `touch_ulps * u * |remaining|` (fuzz finding F24).
+/// `touch_ulps * u * |remaining|` (fuzz finding F24). Not an overlap: a
+/// body already deeper than the touching tolerance must not sink further
+/// (fuzz finding F31).
 ///
 /// A displacement projected onto a triangle's plane still approaches it by
 /// the projection's rounding, and the detection meets a touch at the start
@@ -385,6 +387,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
 /// padding, and the skin is restored at the end of the pass.
 fn grazes_met<T: Real>(frame: &Frame<'_, T>, hit: &Hit<T>, remaining: &Vec3<T>) -> bool {
     hit.t <= T::zero()
+        && !hit.started_overlapping
         && frame.met.contains(&hit.triangle)
         && !(-dot(remaining, &hit.normal) > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * norm(remaining))
 }
