@@ -636,12 +636,7 @@ fn face_contact<T: Real>(
     // Orientation against the triangle's own winding normal (not the
     // side-flipped `n`), so back faces are found too.
     let winding = c.normal.as_ref().unwrap_or(n);
-    let p = [&rel.a, &rel.b, &rel.c];
-    let outside = (0..3).find_map(|i| {
-        let o = dot(&cross(&c.edges[i], &(&contact - p[i])), winding);
-        (o < zero).then_some((i, o))
-    });
-    let (t, contact) = match outside {
+    let (t, contact) = match side_outside(c, rel, winding, &contact) {
         None => (t, contact),
         Some(side) => {
             let window = Window { t, nv, tol: T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel) };
@@ -653,14 +648,39 @@ fn face_contact<T: Real>(
             (t, contact)
         }
     };
-    Some(Hit {
+    Some(face_hit(c, n, t, contact, base))
+}
+
+/// The first side of the triangle (index and orientation, `|edge|` times
+/// the signed distance to the side's line, against `winding`) that the
+/// contact point `contact` (relative to the sweep's start, as `rel`) lies
+/// outside of, if any.
+#[inline]
+fn side_outside<T: Real>(
+    c: &Candidate<T>,
+    rel: &Triangle<T>,
+    winding: &Vec3<T>,
+    contact: &Vec3<T>,
+) -> Option<(usize, T)> {
+    let p = [&rel.a, &rel.b, &rel.c];
+    (0..3).find_map(|i| {
+        let o = dot(&cross(&c.edges[i], &(contact - p[i])), winding);
+        (o < T::zero()).then_some((i, o))
+    })
+}
+
+/// The face hit of candidate `c` at time `t`, `contact` relative to the
+/// sweep's start `base`, with the normal `n` turned towards the centre.
+#[inline]
+fn face_hit<T: Real>(c: &Candidate<T>, n: &Vec3<T>, t: T, contact: Vec3<T>, base: &Vec3<T>) -> Hit<T> {
+    Hit {
         t,
         point: contact + base,
         normal: n.clone(),
         feature: Feature::Face,
         triangle: c.index,
         started_overlapping: false,
-    })
+    }
 }
 
 /// For [`face_contact`], when the centre already lies within 1 of the plane
@@ -696,26 +716,13 @@ fn face_entered_touching<T: Real>(
     }
     let contact = -n.clone();
     let winding = c.normal.as_ref().unwrap_or(n);
-    let p = [&rel.a, &rel.b, &rel.c];
-    let side = (0..3)
-        .find_map(|i| {
-            let o = dot(&cross(&c.edges[i], &(&contact - p[i])), winding);
-            (o < zero).then_some((i, o))
-        })
-        .unwrap_or((0, zero.clone()));
+    let side = side_outside(c, rel, winding, &contact).unwrap_or((0, zero.clone()));
     let t = face_window(c, rel, winding, vel, &contact, &Window { t: zero, nv, tol: reach }, side)?;
     if !wins(&t) {
         return None;
     }
     let contact = vel * t.clone() - n;
-    Some(Hit {
-        t,
-        point: contact + base,
-        normal: n.clone(),
-        feature: Feature::Face,
-        triangle: c.index,
-        started_overlapping: false,
-    })
+    Some(face_hit(c, n, t, contact, base))
 }
 
 /// The magnitude `s` a face contact's rounding scales with: the larger of 1

@@ -17,6 +17,17 @@ use sweepslide::world::{TriangleMesh, World};
 
 type Soup = [[[f64; 3]; 3]];
 
+/// The fuzzer's corner scene: three walls of two triangles each, meeting
+/// at the origin, 20 long.
+const CORNER: [[[f64; 3]; 3]; 6] = [
+    [[0.0, 0.0, 0.0], [0.0, 0.0, 20.0], [20.0, 0.0, 20.0]],
+    [[0.0, 0.0, 0.0], [20.0, 0.0, 20.0], [20.0, 0.0, 0.0]],
+    [[0.0, 0.0, 0.0], [0.0, 20.0, 0.0], [0.0, 20.0, 20.0]],
+    [[0.0, 0.0, 0.0], [0.0, 20.0, 20.0], [0.0, 0.0, 20.0]],
+    [[0.0, 0.0, 0.0], [20.0, 0.0, 0.0], [20.0, 20.0, 0.0]],
+    [[0.0, 0.0, 0.0], [20.0, 20.0, 0.0], [0.0, 20.0, 0.0]],
+];
+
 /// Plays `frames` (velocity, gravity) with the robust response from
 /// `start` and returns the largest exact penetration at the end of a frame
 /// (positive: inside), after checking that the start was outside.
@@ -371,15 +382,7 @@ fn sphere_in_a_corner_beside_a_huge_sliver_stays_out_of_it() {
         [10388.065287468866, -11047.39255500502, 98843.31929762149],
         [31165.28540304539, -33124.08102150186, 296532.285480922],
     ];
-    let soup = [
-        [[0.0, 0.0, 0.0], [0.0, 0.0, 20.0], [20.0, 0.0, 20.0]],
-        [[0.0, 0.0, 0.0], [20.0, 0.0, 20.0], [20.0, 0.0, 0.0]],
-        [[0.0, 0.0, 0.0], [0.0, 20.0, 0.0], [0.0, 20.0, 20.0]],
-        [[0.0, 0.0, 0.0], [0.0, 20.0, 20.0], [0.0, 0.0, 20.0]],
-        [[0.0, 0.0, 0.0], [20.0, 0.0, 0.0], [20.0, 20.0, 0.0]],
-        [[0.0, 0.0, 0.0], [20.0, 20.0, 0.0], [0.0, 20.0, 0.0]],
-        sliver,
-    ];
+    let soup = [CORNER.as_slice(), &[sliver]].concat();
     let push = -0.10000000149011612;
     let frames = [([push; 3], [0.0; 3]); 24];
     let worst = worst_penetration::<f64>(&soup, [1.0; 3], [3.0; 3], &frames);
@@ -802,13 +805,8 @@ fn sphere_touching_the_plane_beside_a_triangle_sliding_into_it_is_stopped() {
 /// on at that depth. An overlapping contact is never skipped.
 #[test]
 fn sphere_starting_inside_a_slivers_plane_is_not_let_through_by_the_graze_rule() {
-    let soup = [
-        [[0.0, 0.0, 0.0], [0.0, 0.0, 20.0], [20.0, 0.0, 20.0]],
-        [[0.0, 0.0, 0.0], [20.0, 0.0, 20.0], [20.0, 0.0, 0.0]],
-        [[0.0, 0.0, 0.0], [0.0, 20.0, 0.0], [0.0, 20.0, 20.0]],
-        [[0.0, 0.0, 0.0], [0.0, 20.0, 20.0], [0.0, 0.0, 20.0]],
-        [[0.0, 0.0, 0.0], [20.0, 0.0, 0.0], [20.0, 20.0, 0.0]],
-        [[0.0, 0.0, 0.0], [20.0, 20.0, 0.0], [0.0, 20.0, 0.0]],
+    let mut soup = CORNER.to_vec();
+    soup.extend([
         [
             [-10.499999996492608, 45.44891397594769, 11.125000003507392],
             [-10.500000003507392, -24.69891397594769, 11.124999996492608],
@@ -836,7 +834,7 @@ fn sphere_starting_inside_a_slivers_plane_is_not_let_through_by_the_graze_rule()
         ],
         [[-50.0, 0.0, -50.0], [-50.0, 0.0, 50.0], [50.0, 0.0, 50.0]],
         [[-50.0, 0.0, -50.0], [50.0, 0.0, 50.0], [50.0, 0.0, -50.0]],
-    ];
+    ]);
     let push = ([-774797.74431554, 259285.48789828437, 479734.4527554192], [0.0; 3]);
     let start = [-12.820651725156448, -1.6454916886856423, 9.948194221412788];
     let worst = worst_penetration::<f64>(&soup, [1.0; 3], start, &[push]);
