@@ -37,14 +37,17 @@
 //! 5. Repeat with the projected displacement. A triangle already met in
 //!    this pass and touched again at the start of a sweep is skipped by
 //!    the next sweep when the displacement approaches it by no more than
-//!    the touching tolerance's share of its length (`touch_ulps * u`, see
-//!    [`crate::detect::DetectOptions`]): a displacement projected onto its
-//!    plane approaches it only by the projection's rounding, and meeting
-//!    it again, sweep after sweep, would add nothing to the cone and
-//!    freeze the body (fuzz finding F24). Over the sweep the body then
-//!    nears it by at most that share, `16 u |w|`, less than the padding
-//!    (`48 u s`, `s` at least the displacement's largest coordinate, so
-//!    `|w| <= sqrt(3) s`), and the skin is restored at the end of the pass.
+//!    the touching tolerance's share (`touch_ulps * u`, see
+//!    [`crate::detect::DetectOptions`]) of the displacement still to go
+//!    before projection (`w` times the fraction of the frame left): a
+//!    displacement projected onto its plane approaches it only by the
+//!    projection's rounding, a few `u` of that length however short the
+//!    projection (fuzz finding F32), and meeting it again, sweep after
+//!    sweep, would add nothing to the cone and freeze the body (fuzz
+//!    finding F24). Over the sweep the body then nears it by at most that
+//!    share, `16 u |w|`, less than the padding (`48 u s`, `s` at least the
+//!    displacement's largest coordinate, so `|w| <= sqrt(3) s`), and the
+//!    skin is restored at the end of the pass.
 //!
 //! Bound: at most [`RobustOptions::max_iterations`] sweeps per pass (plus one
 //! push-out sweep after a grazing contact, not counted). Each sweep either
@@ -336,7 +339,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             frame.trace.stop = StopReason::Free;
             return settle(frame, p + remaining, opts);
         };
-        if grazes_met(frame, &hit, &remaining) {
+        if grazes_met(frame, &hit, &remaining, &(norm(&w) * &time_left)) {
             grazed.push(hit.triangle);
             continue;
         }
@@ -370,13 +373,17 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
 
 /// Whether `hit`, from a sweep along `remaining`, is a touch at the start of
 /// a triangle already met in this pass that the motion approaches by no
-/// more than the detection's touching tolerance's share of its length,
-/// `touch_ulps * u * |remaining|` (fuzz finding F24). Not an overlap: a
-/// body already deeper than the touching tolerance must not sink further
-/// (fuzz finding F31).
+/// more than the detection's touching tolerance's share of `reach`, the
+/// length of the displacement still to go before its projection onto the
+/// planes met (`touch_ulps * u * reach`; fuzz findings F24, F32). Not an
+/// overlap: a body already deeper than the touching tolerance must not sink
+/// further (fuzz finding F31).
 ///
 /// A displacement projected onto a triangle's plane still approaches it by
-/// the projection's rounding, and the detection meets a touch at the start
+/// the projection's rounding, a few `u` of the unprojected length (of
+/// `reach`, not of the projection: a gravity projected onto a floor tilted
+/// by `4e-8` keeps `4e-8` of its length, and the rounding was `5e-9` of
+/// that, F32), and the detection meets a touch at the start
 /// at any approach (at a grazing angle also through the face test's
 /// window, whose tolerance grows with the speed). Met again, the triangle
 /// adds nothing to the cone, the projection is the same, and so is the next
@@ -385,11 +392,11 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
 /// safe: the distance to a convex triangle is convex along the motion, so
 /// over the sweep the body nears it by at most that share, less than the
 /// padding, and the skin is restored at the end of the pass.
-fn grazes_met<T: Real>(frame: &Frame<'_, T>, hit: &Hit<T>, remaining: &Vec3<T>) -> bool {
+fn grazes_met<T: Real>(frame: &Frame<'_, T>, hit: &Hit<T>, remaining: &Vec3<T>, reach: &T) -> bool {
     hit.t <= T::zero()
         && !hit.started_overlapping
         && frame.met.contains(&hit.triangle)
-        && !(-dot(remaining, &hit.normal) > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * norm(remaining))
+        && !(-dot(remaining, &hit.normal) > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * reach)
 }
 
 /// The end of a pass (and the start of the first): restores the skin and
