@@ -848,9 +848,9 @@ fn sphere_starting_inside_a_slivers_plane_is_not_let_through_by_the_graze_rule()
 /// tilt by `4e-8` along the motion). The slot is narrower than twice the
 /// padding, so the body cannot keep its skin from both walls; it ended the
 /// frame `4.7e-16` (eSpace) inside the upper wall, within the rounding of
-/// its position (the fuzz oracle's `position_rounding`, `2e-15` here,
-/// under which a frame that ends squeezed in a slot is out of range). That
-/// part is not a defect, and the test pins its bound. What was one: the
+/// its world position (`2e-15` here; the fuzz oracle allows a frame that
+/// ends squeezed in a slot the padding's skin, `1.8e-14`). That part is
+/// not a defect, and the test pins it to the rounding. What was one: the
 /// gravity pass met the lower wall at `t = 0` eight times, to the
 /// iteration cap. The gravity, projected onto that wall, approached it by
 /// `2 u` of the unprojected displacement (the projection's rounding) but
