@@ -637,14 +637,14 @@ fn squeeze<T: Real>(case: &MoveCase, at: &[f64; 3], frame: usize, opposed: f64) 
         .filter_map(|tri| {
             let (q, _) = closest_point_on_triangle(&centre, &tri);
             let d = centre - q;
-            let skin = SQUEEZE_MARGIN * skin::<T>(case, at, frame, &tri);
-            (d.norm() < 1.0 + skin).then(|| (d, d.norm(), skin))
+            let (n, skin) = (d.norm(), SQUEEZE_MARGIN * skin::<T>(case, at, frame, &tri));
+            (n < 1.0 + skin).then_some((d, n, skin))
         })
         .collect();
     let opposite = near
         .iter()
         .enumerate()
-        .any(|(i, (a, ..))| near[i + 1..].iter().any(|(b, ..)| a.dot(b) < -opposed * a.norm() * b.norm()));
+        .any(|(i, (a, na, _))| near[i + 1..].iter().any(|(b, nb, _)| a.dot(b) < -opposed * na * nb));
     let nearest = near.iter().min_by(|x, y| x.1.total_cmp(&y.1))?;
     opposite.then_some(nearest.2)
 }

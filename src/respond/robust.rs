@@ -322,7 +322,8 @@ fn push_out<T: Real>(
 /// Fauerby's jitter in obtuse corners.
 pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
     let zero = T::zero();
-    let negligible = T::c(opts.feasible_ulps * T::unit_roundoff()) * norm(&w);
+    let w_len = norm(&w);
+    let negligible = T::c(opts.feasible_ulps * T::unit_roundoff()) * &w_len;
     let mut time_left = T::one();
     frame.planes.clear();
     frame.met.clear();
@@ -339,7 +340,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             frame.trace.stop = StopReason::Free;
             return settle(frame, p + remaining, opts);
         };
-        if grazes_met(frame, &hit, &remaining, &(norm(&w) * &time_left)) {
+        if grazes_met(frame, &hit, &remaining, &w_len, &time_left) {
             grazed.push(hit.triangle);
             continue;
         }
@@ -375,7 +376,9 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
 /// a triangle already met in this pass that the motion approaches by no
 /// more than the detection's touching tolerance's share of `reach`, the
 /// length of the displacement still to go before its projection onto the
-/// planes met (`touch_ulps * u * reach`; fuzz findings F24, F32). Not an
+/// planes met (`w_len * time_left`: the pass's displacement `w` scaled by
+/// the fraction of the frame left; `touch_ulps * u * reach`; fuzz findings
+/// F24, F32). Not an
 /// overlap: a body already deeper than the touching tolerance must not sink
 /// further (fuzz finding F31).
 ///
@@ -392,11 +395,12 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
 /// safe: the distance to a convex triangle is convex along the motion, so
 /// over the sweep the body nears it by at most that share, less than the
 /// padding, and the skin is restored at the end of the pass.
-fn grazes_met<T: Real>(frame: &Frame<'_, T>, hit: &Hit<T>, remaining: &Vec3<T>, reach: &T) -> bool {
+fn grazes_met<T: Real>(frame: &Frame<'_, T>, hit: &Hit<T>, remaining: &Vec3<T>, w_len: &T, time_left: &T) -> bool {
     hit.t <= T::zero()
         && !hit.started_overlapping
         && frame.met.contains(&hit.triangle)
-        && !(-dot(remaining, &hit.normal) > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * reach)
+        && !(-dot(remaining, &hit.normal)
+            > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * (w_len.clone() * time_left))
 }
 
 /// The end of a pass (and the start of the first): restores the skin and
