@@ -192,7 +192,7 @@ fn frames() -> Vec<([f64; 3], [f64; 3])> {
 }
 
 fn bench_terrain_for<T: Real>(c: &mut Criterion, mesh: &Arc<TriangleMesh>, frames: &[([f64; 3], [f64; 3])]) {
-    let world = World::<T>::new(mesh.clone());
+    let world = World::<T>::new(mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::sphere(RADIUS).expect("valid radius");
     let opts = DetectOptions::default();
     // Brute force: every triangle, mapped into eSpace once.

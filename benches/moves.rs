@@ -29,7 +29,7 @@ use sweepslide::{Mpfr, Real};
 /// 2,000 frames is used (on the cow, the lab's default walk leaves the
 /// model and falls).
 fn trajectory<T: Real>(scene: &Scene) -> Vec<([f64; 3], [f64; 3])> {
-    let world = World::<T>::new(scene.mesh.clone());
+    let world = World::<T>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(scene.radii).unwrap();
     let gravity = vec3::<T>(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let options = MoveOptions::new(Response::Robust);
@@ -60,7 +60,7 @@ fn moves_in<T: Real>(
     group: &str,
     responses: &[Response],
 ) {
-    let world = World::<T>::new(scene.mesh.clone());
+    let world = World::<T>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(scene.radii).unwrap();
     let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let inputs: Vec<(Vec3<T>, Vec3<T>)> =
@@ -122,7 +122,7 @@ fn bvh(c: &mut Criterion) {
     let mut g = c.benchmark_group("bvh_terrain100k");
     g.sample_size(10);
     g.bench_function("build", |b| b.iter(|| black_box(Bvh::build(&boxes))));
-    let world = World::<f32>::new(mesh.clone());
+    let world = World::<f32>::new(mesh.clone()).expect("the mesh fits the backend");
     let path = trajectory::<f32>(&scene);
     let mut out = Vec::new();
     g.bench_function("query_frame_box", |b| {
@@ -140,14 +140,14 @@ fn bvh(c: &mut Criterion) {
 
 fn batch(c: &mut Criterion) {
     let scene = build("terrain:224", 1).unwrap();
-    let world = World::<f32>::new(scene.mesh.clone());
+    let world = World::<f32>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let path = trajectory::<f32>(&scene);
     let body = Ellipsoid::<f32>::new(scene.radii).unwrap();
     let gravity = Some(vec3::<f32>(0.0, scene.gravity[1], 0.0));
     // Bodies standing on the ground all over the middle of the terrain
     // (dropped onto it from above, 0.001 above the contact), each with a
     // velocity of the steered path: 10,000 characters in one frame.
-    let world64 = World::<f64>::new(scene.mesh.clone());
+    let world64 = World::<f64>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let body64 = Ellipsoid::<f64>::new(scene.radii).unwrap();
     let mut seed = 0x6261_7463_6800_0001_u64;
     let mut coordinate = || {

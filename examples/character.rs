@@ -39,7 +39,7 @@ fn level() -> Result<TriangleMesh, sweepslide::Error> {
 }
 
 fn main() -> Result<(), sweepslide::Error> {
-    let world = World::<f32>::new(Arc::new(level()?));
+    let world = World::<f32>::new(Arc::new(level()?))?;
     let body = Ellipsoid::<f32>::new([0.4, 0.9, 0.4])?;
     let options = MoveOptions::new(Response::Robust);
     let dt: f32 = 1.0 / 60.0;

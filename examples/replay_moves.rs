@@ -31,7 +31,7 @@ fn main() {
         }
     };
     let scene = build("terrain:224", 1).expect("built-in scene");
-    let world = World::<F>::new(scene.mesh.clone());
+    let world = World::<F>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<F>::new(scene.radii).expect("scene radii");
     let gravity: Vec3<F> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let options = MoveOptions::new(Response::Robust);

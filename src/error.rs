@@ -36,10 +36,19 @@ pub enum Error {
         /// How many vertices there are.
         vertex_count: usize,
     },
-    /// A mesh without any valid triangle (the skipped ones, if any, are
-    /// reported by the lenient constructors' callers).
-    #[error("the mesh has no valid triangle")]
+    /// A mesh without any triangle.
+    #[error("the mesh has no triangle")]
     EmptyMesh,
+    /// A mesh whose every triangle is invalid (degenerate, non-finite, or
+    /// naming a missing vertex), from the lenient constructors, which would
+    /// otherwise have skipped them: the first one's error says why.
+    #[error("none of the mesh's {count} triangle(s) is valid; the first: {first}")]
+    NoValidTriangle {
+        /// How many triangles were given.
+        count: usize,
+        /// Why the first was rejected (with its file and line for OBJ input).
+        first: Box<Error>,
+    },
     /// A radius that is zero, negative, NaN or infinite.
     #[error("radius along {axis} must be positive and finite, got {value}")]
     InvalidRadius {

@@ -280,7 +280,7 @@ fn wall_mesh(offset: [f64; 3]) -> Arc<TriangleMesh> {
 /// diagonal shared by triangles 1 and 2: a tie, won by the lower index),
 /// with world normal -x.
 fn world_ellipsoid_wall_tie<T: Real>(d: Detection) {
-    let world = World::<T>::new(wall_mesh([0.0; 3]));
+    let world = World::<T>::new(wall_mesh([0.0; 3])).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new([2.0, 1.0, 1.0]).expect("valid radii");
     let opts = DetectOptions::default();
     let hit = sweep_world(&world, &body, &v([0.0, 0.0, 0.0]), &v([8.0, 0.0, 0.0]), d, &opts).expect("finite input");
@@ -292,7 +292,7 @@ fn world_ellipsoid_wall_tie<T: Real>(d: Detection) {
     assert_eq!(h.triangle, 1, "{what} [{}]: tie to the lowest index", T::name());
     // Moved away from the world origin by 1024 (exact in every backend):
     // the same answer, relative to the new start.
-    let world = World::<T>::new(wall_mesh([1024.0, -1024.0, 1024.0]));
+    let world = World::<T>::new(wall_mesh([1024.0, -1024.0, 1024.0])).expect("the mesh fits the backend");
     let start = v([1024.0, -1024.0, 1024.0]);
     let hit = sweep_world(&world, &body, &start, &v([8.0, 0.0, 0.0]), d, &opts).expect("finite input");
     let Some(h) = hit else { panic!("{what} [{}]: expected a hit far away", T::name()) };
@@ -314,7 +314,7 @@ fn world_ellipsoid_wall_tie<T: Real>(d: Detection) {
 fn world_ellipsoid_slanted<T: Real>(d: Detection) {
     let mesh = TriangleMesh::new(vec![[-6.0, 10.0, -10.0], [14.0, -10.0, -10.0], [4.0, 0.0, 10.0]], vec![[0, 1, 2]])
         .expect("valid mesh");
-    let world = World::<T>::new(Arc::new(mesh));
+    let world = World::<T>::new(Arc::new(mesh)).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new([2.0, 1.0, 1.0]).expect("valid radii");
     let hit = sweep_world(&world, &body, &v([0.0, 0.0, 0.0]), &v([8.0, 0.0, 0.0]), d, &DetectOptions::default())
         .expect("finite input");
@@ -334,7 +334,7 @@ fn world_ellipsoid_slanted<T: Real>(d: Detection) {
 
 /// A non-finite position or velocity is an error, not a NaN hit.
 fn world_rejects_non_finite<T: Real>() {
-    let world = World::<T>::new(wall_mesh([0.0; 3]));
+    let world = World::<T>::new(wall_mesh([0.0; 3])).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::sphere(1.0).expect("valid radius");
     let opts = DetectOptions::default();
     for d in VARIANTS {

@@ -497,7 +497,7 @@ fn check_bvh<T: Real>(scene: &Scene, radii: [f64; 3]) -> Result<(), TestCaseErro
         triangles.push([i, i + 1, i + 2]);
     }
     let mesh = Arc::new(TriangleMesh::new(vertices, triangles).expect("well-shaped triangles are valid"));
-    let world = World::<T>::new(mesh);
+    let world = World::<T>::new(mesh).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(radii).expect("valid radii");
     let p = |a: &[f64; 3]| vec3::<T>(a[0], a[1], a[2]);
     let (pos, vel) = (p(&scene.base), p(&scene.vel));

@@ -113,6 +113,17 @@ fn nearly_collinear_sliver_within_rounding_is_degenerate() {
 }
 
 #[test]
+fn well_shaped_triangles_validate_at_any_scale() {
+    // Their squared areas overflow (1e160) or underflow (1e-170) `f64`:
+    // they were once reported as collinear.
+    for scale in [1e160, 1e-170, 1e300, 1e-300, 1.0] {
+        let v = [[0.0, 0.0, 0.0], [scale, 0.0, 0.0], [0.0, scale, 0.0], [scale, scale, 0.0]];
+        let mesh = TriangleMesh::new(v.to_vec(), vec![[0, 1, 2], [1, 3, 2]]);
+        assert_eq!(mesh.map(|m| m.len()), Ok(2), "scale {scale}");
+    }
+}
+
+#[test]
 fn vertex_index_out_of_range() {
     let (v, mut t) = square();
     t.push([0, 2, 4]); // index 2; only 4 vertices
@@ -174,13 +185,27 @@ fn new_skipping_invalid_keeps_valid_triangles_and_lists_skipped_ones() {
     assert!(matches!(&skipped[3], Error::DegenerateTriangle { index: 5, .. }), "{:?}", skipped[3]);
 }
 
-/// The doc of `new_skipping_invalid` promises `EmptyMesh` "when no valid
-/// triangle remains".
+/// A lenient constructor left with no valid triangle says how many there
+/// were and why the first was rejected (it once said only "no valid
+/// triangle").
 #[test]
-fn new_skipping_invalid_with_no_valid_triangle_is_empty_mesh() {
+fn new_skipping_invalid_with_no_valid_triangle_says_why() {
     let (v, _) = square();
     let result = TriangleMesh::new_skipping_invalid(v, vec![[0, 0, 1], [1, 2, 9]]);
-    assert_eq!(result.unwrap_err(), Error::EmptyMesh);
+    match result.unwrap_err() {
+        Error::NoValidTriangle { count: 2, first } => {
+            assert!(matches!(*first, Error::DegenerateTriangle { index: 0, .. }), "{first:?}")
+        }
+        e => panic!("{e:?}"),
+    }
+    let text = format!("{V4}f 1 1 2\nf 1 2 2\n");
+    match TriangleMesh::from_obj_str(&text, Path::new("flat.obj")).unwrap_err() {
+        e @ Error::NoValidTriangle { count: 2, .. } => {
+            let message = e.to_string();
+            assert!(message.contains("flat.obj:5:"), "{message}");
+        }
+        e => panic!("{e:?}"),
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -511,6 +536,22 @@ fn malformed_case_files_are_invalid_arguments_with_the_reason() {
             "gravity changes",
         ),
         ("missing", r#"{"radii": [1,1,1], "start": [0,2,0], "frames": []}"#, "triangles"),
+        (
+            "misspelt",
+            &format!(
+                r#"{{"triangles": [{tri}], "radii": [1,1,1], "start": [0,2,0],
+                "frames": [{{"velocity": [0,-1,0], "gravty": [0,-1,0]}}]}}"#
+            ),
+            "unknown field `gravty`",
+        ),
+        (
+            "finding-key",
+            &format!(
+                r#"{{"respnse": "linahan", "case": {{"triangles": [{tri}], "radii": [1,1,1], "start": [0,2,0],
+                "frames": [{{"velocity": [0,-1,0], "gravity": null}}]}}}}"#
+            ),
+            "unknown key `respnse`",
+        ),
     ];
     for (name, text, reason) in cases {
         let path = dir.join(format!("{name}.json"));
@@ -533,4 +574,150 @@ fn malformed_case_files_are_invalid_arguments_with_the_reason() {
     std::fs::write(&path, text).unwrap();
     let scene = Scene::from_case_file(&path).unwrap();
     assert_eq!((scene.mesh.len(), scene.mesh.skipped().len()), (1, 1));
+}
+
+#[test]
+fn obj_file_that_is_not_utf8_names_its_line_and_a_byte_order_mark_is_ignored() {
+    let dir = std::env::temp_dir().join(format!("sweepslide-utf8-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("latin1.obj");
+    std::fs::write(&path, b"v 0 0 0\nv 1 0 0\nv 0 1 0\n# caf\xe9\nf 1 2 3\n").unwrap();
+    match TriangleMesh::from_obj_file(&path).unwrap_err() {
+        Error::Obj { line, message, .. } => assert!(line == 4 && message.contains("UTF-8"), "{line}: {message}"),
+        e => panic!("{e:?}"),
+    }
+    let mesh = TriangleMesh::from_obj_str("\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", Path::new("bom.obj"));
+    assert_eq!(mesh.unwrap().len(), 1);
+}
+
+// ---------------------------------------------------------------------------
+// move_body: options and magnitudes out of range
+// ---------------------------------------------------------------------------
+
+/// A floor and a sphere above it, in `T`.
+fn floor_world<T: sweepslide::Real>() -> sweepslide::world::World<T> {
+    let (v, t) = square();
+    let v = v.into_iter().map(|[x, y, _]| [10.0 * x - 5.0, 0.0, 10.0 * y - 5.0]).collect();
+    sweepslide::world::World::new(std::sync::Arc::new(TriangleMesh::new(v, t).unwrap())).unwrap()
+}
+
+#[test]
+fn move_options_out_of_range_name_the_field() {
+    use sweepslide::respond::{MAX_ROUNDS, MoveOptions, Response, move_body};
+    let world = floor_world::<f64>();
+    let body = Ellipsoid::<f64>::sphere(0.5).unwrap();
+    let (p, v) = (vec3::<f64>(0.0, 1.0, 0.0), vec3::<f64>(0.1, -0.2, 0.0));
+    type Edit = fn(&mut MoveOptions);
+    let cases: [(&str, Edit); 9] = [
+        ("robust.max_padding", |o| o.robust.max_padding = -0.5),
+        ("robust.padding_ulps", |o| o.robust.padding_ulps = -1e12),
+        ("detect.touch_ulps", |o| o.detect.touch_ulps = f64::NAN),
+        ("robust.feasible_ulps", |o| o.robust.feasible_ulps = f64::INFINITY),
+        ("linahan.very_close_distance", |o| o.linahan.very_close_distance = f64::NAN),
+        ("robust.free_tilt", |o| o.robust.free_tilt = 0.0),
+        ("robust.depenetration_rounds", |o| o.robust.depenetration_rounds = u32::MAX),
+        ("robust.max_iterations", |o| o.robust.max_iterations = 0),
+        ("fauerby.max_depth", |o| o.fauerby.max_depth = MAX_ROUNDS + 1),
+    ];
+    for (field, edit) in cases {
+        for response in Response::ALL {
+            let mut o = MoveOptions::new(response);
+            assert_eq!(o.validate(), Ok(()));
+            edit(&mut o);
+            match move_body(&world, &body, &p, &v, None, &o) {
+                Err(Error::InvalidArgument { what, .. }) => assert_eq!(what, field),
+                other => panic!("{field}: {other:?}"),
+            }
+        }
+    }
+}
+
+/// A displacement whose length in radii squared overflows `T` is an error,
+/// not a body that silently stays put (the robust response used to stop
+/// with `Blocked`) or a NaN (the faithful ones).
+fn overflowing_move<T: sweepslide::Real>(speed: f64, tiny_radius: f64) {
+    use sweepslide::respond::{MoveOptions, Response, move_body};
+    let world = floor_world::<T>();
+    let body = Ellipsoid::<T>::sphere(0.5).unwrap();
+    let p = vec3::<T>(0.0, 1.0, 0.0);
+    for response in Response::ALL {
+        let o = MoveOptions::new(response);
+        let r = move_body(&world, &body, &p, &vec3(speed, 0.0, 0.0), None, &o);
+        assert!(matches!(r, Err(Error::InvalidArgument { ref what, .. }) if what == "move"), "{r:?}");
+        // The same speed in radii through a tiny body.
+        let tiny = Ellipsoid::<T>::sphere(tiny_radius).unwrap();
+        let at = vec3::<T>(0.0, 2.0 * tiny_radius, 0.0);
+        let r = move_body(&world, &tiny, &at, &vec3(speed * tiny_radius, 0.0, 0.0), None, &o);
+        assert!(matches!(r, Err(Error::InvalidArgument { ref what, .. }) if what == "move"), "{r:?}");
+        // Within range, the move works.
+        assert!(move_body(&world, &body, &p, &vec3(1e3, 0.0, 0.0), None, &o).is_ok());
+    }
+}
+
+#[test]
+fn overflowing_move_f32() {
+    overflowing_move::<f32>(1e20, 1e-30);
+}
+
+#[test]
+fn overflowing_move_f64() {
+    overflowing_move::<f64>(1e160, 1e-150);
+}
+
+// ---------------------------------------------------------------------------
+// The lab's scenes and runs
+// ---------------------------------------------------------------------------
+
+#[cfg(feature = "lab")]
+#[test]
+fn scene_parameters_are_never_dropped_or_truncated() {
+    use sweepslide::lab::scenes::build;
+    for (spec, reason) in [
+        ("floor:5", "takes no parameter"),
+        ("room:1", "takes no parameter"),
+        ("dead-end:2", "takes no parameter"),
+        ("staircase:20.7", "whole number"),
+        ("terrain:2.9", "whole number"),
+        ("soup:1.5", "whole number"),
+        ("tessellated-floor:3.5", "whole number"),
+    ] {
+        match build(spec, 1) {
+            Err(Error::InvalidArgument { message, .. }) => assert!(message.contains(reason), "{spec}: {message}"),
+            other => panic!("{spec}: {:?}", other.map(|s| s.name)),
+        }
+    }
+    assert_eq!(build("staircase:20", 1).unwrap().name, "staircase:20");
+}
+
+#[cfg(feature = "lab")]
+#[test]
+fn run_frames_out_of_range_and_a_case_starting_at_rest() {
+    use std::sync::Arc;
+    use sweepslide::lab::scenes::build;
+    use sweepslide::lab::{Motion, Precision, RunConfig, run};
+    use sweepslide::respond::Response;
+    let config = |scene| RunConfig {
+        scene: Arc::new(scene),
+        response: Response::Robust,
+        detection: None,
+        precision: Precision::F64,
+        seed: 1,
+    };
+    for frames in [0, sweepslide::lab::runner::MAX_FRAMES + 1, usize::MAX] {
+        let scene = sweepslide::lab::Scene { frames, ..build("floor", 1).unwrap() };
+        match run(&config(scene)) {
+            Err(Error::InvalidArgument { what, .. }) => assert_eq!(what, "frames"),
+            other => panic!("{frames}: {:?}", other.map(|o| o.result)),
+        }
+    }
+    // A scripted motion that starts at rest and moves later is a motion.
+    let mut scene = build("floor", 1).unwrap();
+    scene.gravity = [0.0; 3];
+    scene.velocity = [0.0; 3];
+    scene.motion = Motion::Scripted { velocities: vec![[0.0; 3], [0.1, 0.0, 0.0]] };
+    scene.frames = 2;
+    let out = run(&config(scene.clone())).unwrap();
+    assert!(out.result.final_position[0] > scene.start[0]);
+    scene.motion = Motion::Scripted { velocities: vec![[0.0; 3]; 2] };
+    assert_eq!(run(&config(scene)).unwrap_err(), Error::ZeroVelocity);
 }

@@ -14,7 +14,7 @@ use sweepslide::world::{TriangleMesh, World};
 
 fn floor() -> World<f64> {
     let v = vec![[-10.0, 0.0, -10.0], [-10.0, 0.0, 10.0], [10.0, 0.0, 10.0], [10.0, 0.0, -10.0]];
-    World::new(Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap()))
+    World::new(Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap())).unwrap()
 }
 
 #[test]

@@ -130,7 +130,7 @@ struct Stats {
 /// mesh, through its whole height, in backend `T`; checks every hit and,
 /// for the first `exact_sample` hits, the exact distances.
 fn sweep_mesh<T: Real>(name: &str, mesh: &Arc<TriangleMesh>, sweeps: usize, exact_sample: usize) -> Stats {
-    let world = World::<T>::new(mesh.clone());
+    let world = World::<T>::new(mesh.clone()).expect("the mesh fits the backend");
     let b = *mesh.bounds();
     let diag = (b.max - b.min).norm();
     let r = 0.02 * diag;

@@ -45,6 +45,39 @@ fn two_shards_merged_give_the_unsharded_results() {
     assert!(merge(vec![shards[0].clone(), shards[0].clone(), shards[1].clone()]).is_err());
 }
 
+#[test]
+fn a_shard_whose_run_ends_with_a_nan_position_is_written_read_and_merged() {
+    // Linahan's response ends this fuzz case with a NaN position; JSON has
+    // no NaN, and `runs.json` once wrote `null` there and could not be read
+    // back by `sweepslide merge`.
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz/linahan-nan-narrow-slot.json");
+    let (info, entries) = matrix(true, &[], std::slice::from_ref(&case));
+    let mut picked: Vec<_> = entries
+        .into_iter()
+        .filter(|e| e.response == sweepslide::respond::Response::Linahan && format!("{:?}", e.source).contains("nan"))
+        .collect();
+    for (i, e) in picked.iter_mut().enumerate() {
+        e.index = i;
+    }
+    let info = sweepslide::report::matrix::MatrixInfo { runs: picked.len(), ..info };
+    let runs = Runs { info, records: run_entries(&picked, 1, &|| {}).unwrap() };
+    let nan_ended = |runs: &Runs| {
+        runs.records
+            .iter()
+            .filter(|r| r.outcome.as_ref().is_ok_and(|o| o.final_position.iter().any(|x| x.is_nan())))
+            .count()
+    };
+    assert!(nan_ended(&runs) > 0, "the case no longer ends with NaN: {:?}", runs.records);
+    let dir = std::env::temp_dir().join(format!("sweepslide-nan-shard-{}", std::process::id()));
+    sweepslide::report::write_runs(&dir, &runs).unwrap();
+    let back = sweepslide::report::read_runs(&dir).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(nan_ended(&back), nan_ended(&runs));
+    // Bit for bit otherwise: the same text when written again.
+    assert_eq!(serde_json::to_string(&back).unwrap(), serde_json::to_string(&runs).unwrap());
+    assert_eq!(merge(vec![back]).unwrap().records.len(), picked.len());
+}
+
 /// Checks that every element opened is closed in order (void elements
 /// aside) and returns the `href` and `src` targets.
 fn check_balanced(html: &str) -> Vec<String> {

@@ -59,7 +59,7 @@ struct Run<T: Real> {
 }
 
 fn simulate<T: Real>(s: &Scene, opts: &MoveOptions, frames: usize) -> Run<T> {
-    let world = World::<T>::new(s.mesh.clone());
+    let world = World::<T>::new(s.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(s.radii).unwrap();
     let vel = v::<T>(s.velocity);
     let g = v::<T>(s.gravity);
@@ -464,7 +464,7 @@ fn runs_are_bit_identical<T: Real>() {
 fn zero_velocity_leaves_position_unchanged<T: Real>() {
     for spec in ["floor", "corner", "dead-end"] {
         let s = scene(spec);
-        let world = World::<T>::new(s.mesh.clone());
+        let world = World::<T>::new(s.mesh.clone()).expect("the mesh fits the backend");
         let body = Ellipsoid::<T>::new(s.radii).unwrap();
         let p = v::<T>(s.start);
         let zero = v::<T>([0.0; 3]);
@@ -486,7 +486,7 @@ fn zero_velocity_leaves_position_unchanged<T: Real>() {
 /// the argument, for every response.
 fn non_finite_input_is_an_error<T: Real>() {
     let s = scene("floor");
-    let world = World::<T>::new(s.mesh.clone());
+    let world = World::<T>::new(s.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(s.radii).unwrap();
     let p = v::<T>(s.start);
     let vel = v::<T>(s.velocity);

@@ -71,14 +71,25 @@ fn main() {
                     Ok(mesh) => {
                         let b = *mesh.bounds();
                         let n = mesh.len();
-                        let world = World::<f32>::new(Arc::new(mesh));
-                        let (c, d) = (b.centre(), b.max - b.min);
-                        let r = (d.norm() * 0.05).clamp(1e-3, 1e3);
-                        let body = Ellipsoid::<f32>::sphere(r).expect("radius");
-                        let pos = vec3::<f32>(c.x, b.max.y + 2.0 * r, c.z);
-                        let vel = vec3::<f32>(d.x * 0.1, -(d.y + 4.0 * r), d.z * 0.1);
-                        let hit = sweep_world(&world, &body, &pos, &vel, Detection::Robust, &DetectOptions::default());
-                        format!("mesh of {n} triangles; sweep of r = {r} from {pos:?} by {vel:?}: {hit:?}")
+                        match World::<f32>::new(Arc::new(mesh)) {
+                            Err(e) => format!("mesh of {n} triangles; in f32: {e}"),
+                            Ok(world) => {
+                                let (c, d) = (b.centre(), b.max - b.min);
+                                let r = (d.norm() * 0.05).clamp(1e-3, 1e3);
+                                let body = Ellipsoid::<f32>::sphere(r).expect("radius");
+                                let pos = vec3::<f32>(c.x, b.max.y + 2.0 * r, c.z);
+                                let vel = vec3::<f32>(d.x * 0.1, -(d.y + 4.0 * r), d.z * 0.1);
+                                let hit = sweep_world(
+                                    &world,
+                                    &body,
+                                    &pos,
+                                    &vel,
+                                    Detection::Robust,
+                                    &DetectOptions::default(),
+                                );
+                                format!("mesh of {n} triangles; sweep of r = {r} from {pos:?} by {vel:?}: {hit:?}")
+                            }
+                        }
                     }
                 };
                 (format!("{text:?}"), v)

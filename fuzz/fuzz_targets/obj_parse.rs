@@ -24,6 +24,11 @@ fuzz_target!(|data: &[u8]| {
                 "EmptyMesh from from_obj_str but not from new_skipping_invalid"
             );
         }
+        Err(Error::NoValidTriangle { count, first }) => {
+            let data = parsed.expect("NoValidTriangle only after a successful parse");
+            assert_eq!(count, data.triangles.len(), "NoValidTriangle miscounts");
+            assert!(matches!(*first, Error::Obj { line, .. } if line >= 1), "first error without its line: {first:?}");
+        }
         Err(Error::Obj { line, .. }) => {
             assert!(parsed.is_err() && line >= 1 && line <= text.lines().count().max(1), "bad error line {line}");
         }
@@ -48,7 +53,16 @@ fuzz_target!(|data: &[u8]| {
                 let _ = mesh.active(t);
             }
             let b = *mesh.bounds();
-            let world = World::<f32>::new(Arc::new(mesh));
+            // A coordinate beyond `f32`'s range is refused, not rounded to
+            // infinity; nothing else is.
+            let huge = b.min.iter().chain(b.max.iter()).any(|x| x.abs() > f64::from(f32::MAX));
+            let world = match World::<f32>::new(Arc::new(mesh)) {
+                Ok(world) => world,
+                Err(e) => {
+                    assert!(huge && matches!(e, Error::InvalidArgument { .. }), "{e:?}");
+                    return;
+                }
+            };
             let centre = b.centre();
             let d = b.max - b.min;
             let r = (d.norm() * 0.05).clamp(1e-3, 1e3);

@@ -692,7 +692,7 @@ pub fn prepare<T: Real>(case: &MoveCase) -> Result<Prepared<T>, Skip> {
         indices.push([i, i + 1, i + 2]);
     }
     let mesh = TriangleMesh::new_skipping_invalid(vertices, indices).map_err(|_| Skip::EmptyMesh)?;
-    let world = World::<T>::new(Arc::new(mesh));
+    let world = World::<T>::new(Arc::new(mesh)).expect("the mesh fits the backend");
     let start = vec3::<T>(case.start[0], case.start[1], case.start[2]);
     if !in_range_t(&start) {
         return Err(Skip::OutOfRange);

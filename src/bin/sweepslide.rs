@@ -7,7 +7,7 @@ use std::sync::Arc;
 use sweepslide::Error;
 use sweepslide::detect::Detection;
 use sweepslide::lab::scenes::{self, BUILTIN, build};
-use sweepslide::lab::{Precision, RunConfig, RunOutput, Scene, run};
+use sweepslide::lab::{Motion, Precision, RunConfig, RunOutput, Scene, run};
 use sweepslide::respond::Response;
 
 #[derive(Parser)]
@@ -168,6 +168,26 @@ fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
     Ok([parse_number(parts[0])?, parse_number(parts[1])?, parse_number(parts[2])?])
 }
 
+/// Writes a line to standard output; a reader that went away (`| head`)
+/// ends the output quietly instead of a panic.
+fn emit(line: &str) -> Result<(), Failure> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout.write_all(line.as_bytes()).and_then(|()| stdout.write_all(b"\n")) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(Failure(Error::Io { path: "standard output".into(), message: e.to_string() }))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// `println!` through [`emit`], returning its error.
+macro_rules! out {
+    ($($arg:tt)*) => {
+        emit(&format!($($arg)*))?
+    };
+}
+
 /// A failure and the exit code it maps to: 2 for bad input, 1 otherwise.
 struct Failure(Error);
 
@@ -191,12 +211,7 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
         (Some(name), _, _) => (build(name, args.seed)?, true),
         (None, Some(path), _) | (None, None, Some(path)) => {
             let s = if args.mesh.is_some() { Scene::from_obj(path)? } else { Scene::from_case_file(path)? };
-            if !s.mesh.skipped().is_empty() {
-                eprintln!("warning: {} face(s) of {} skipped:", s.mesh.skipped().len(), path.display());
-                for e in s.mesh.skipped().iter().take(5) {
-                    eprintln!("  {e}");
-                }
-            }
+            warn_skipped(&s, &path.display().to_string());
             (s, false)
         }
         (None, None, None) => unreachable!("clap requires --scene, --mesh or --case"),
@@ -210,6 +225,10 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
     if let Some(v) = args.velocity {
         scene.velocity = v;
         scene.ideal = None;
+        // A case's recorded velocities give way to the one asked for.
+        if matches!(scene.motion, Motion::Scripted { .. }) {
+            scene.motion = Motion::Constant;
+        }
     }
     if let Some(v) = args.gravity {
         scene.gravity = v;
@@ -222,8 +241,24 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
     }
     if let Some(o) = args.offset {
         scene = scene.offset(o, built_in)?;
+        warn_skipped(&scene, &format!("the scene at offset {},{},{}", o[0], o[1], o[2]));
     }
     Ok(scene)
+}
+
+/// Says on standard error which triangles of `scene` were left out (a
+/// file's invalid faces, or those an offset's rounding collapsed).
+fn warn_skipped(scene: &Scene, what: &str) {
+    let skipped = scene.mesh.skipped();
+    if !skipped.is_empty() {
+        eprintln!("warning: {} triangle(s) of {what} skipped:", skipped.len());
+        for e in skipped.iter().take(5) {
+            eprintln!("  {e}");
+        }
+        if skipped.len() > 5 {
+            eprintln!("  ... and {} more", skipped.len() - 5);
+        }
+    }
 }
 
 fn write_trace(path: &std::path::Path, out: &RunOutput) -> Result<(), Error> {
@@ -261,33 +296,37 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
     }
     let r = &out.result;
     if args.json {
-        println!("{}", serde_json::to_string(r).expect("metrics serialise"));
+        out!("{}", serde_json::to_string(r).expect("metrics serialise"));
     } else {
-        println!(
+        out!(
             "scene {} | response {} on {} detection | {} | {} frames (seed {})",
-            r.scene, r.response, r.detection, r.precision, r.frames, r.seed
+            r.scene,
+            r.response,
+            r.detection,
+            r.precision,
+            r.frames,
+            r.seed
         );
-        println!(
+        out!(
             "  penetration   max {:.3e}, {} frame(s) inside{}",
             r.max_penetration,
             r.penetrating_frames,
             r.first_penetrating_frame.map_or(String::new(), |f| format!(", first at frame {f}"))
         );
-        println!("  jitter        {:.3e}", r.jitter);
-        println!(
+        out!("  jitter        {:.3e}", r.jitter);
+        out!(
             "  iterations    max {}, mean {:.2}, {} frame(s) at the cap",
-            r.max_iterations, r.mean_iterations, r.capped_frames
+            r.max_iterations,
+            r.mean_iterations,
+            r.capped_frames
         );
-        println!("  NaN frames    {}", r.nan_frames);
-        println!(
-            "  decision flips vs mpfr256: {} ({} with a different sliding plane)",
-            r.decision_flips, r.plane_flips
-        );
+        out!("  NaN frames    {}", r.nan_frames);
+        out!("  decision flips vs mpfr256: {} ({} with a different sliding plane)", r.decision_flips, r.plane_flips);
         if let Some(s) = r.snag {
-            println!("  snag ratio    {s:.6} (1 = ideal slide)");
+            out!("  snag ratio    {s:.6} (1 = ideal slide)");
         }
-        println!("  final position {:?}", r.final_position);
-        println!("  time per move  {:.0} ns (includes no metric)", r.ns_per_move);
+        out!("  final position {:?}", r.final_position);
+        out!("  time per move  {:.0} ns (includes no metric)", r.ns_per_move);
     }
     Ok(())
 }
@@ -372,12 +411,20 @@ fn search_command(seed: u64, trials: usize, jobs: usize, json: bool) -> Result<(
     let findings = sweepslide::lab::search::search(seed, trials, jobs)?;
     for f in &findings {
         if json {
-            println!("{}", serde_json::to_string(f).expect("findings serialise"));
+            out!("{}", serde_json::to_string(f).expect("findings serialise"));
         } else {
-            println!("{:?} {:.3e}  {}", f.kind, f.value, f.command);
+            out!("{:?} {:.3e}  {}", f.kind, f.value, f.command);
         }
     }
     eprintln!("{} findings in {} trials (seed {seed})", findings.len(), trials);
+    Ok(())
+}
+
+fn scenes_command() -> Result<(), Failure> {
+    for (name, param, description) in BUILTIN {
+        let param = if param.is_empty() { String::new() } else { format!(" [:{param}]") };
+        out!("{name}{param}\n    {description}");
+    }
     Ok(())
 }
 
@@ -385,13 +432,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Run(args) => run_command(args),
-        Command::Scenes => {
-            for (name, param, description) in BUILTIN {
-                let param = if param.is_empty() { String::new() } else { format!(" [:{param}]") };
-                println!("{name}{param}\n    {description}");
-            }
-            Ok(())
-        }
+        Command::Scenes => scenes_command(),
         Command::Report(args) => report_command(args),
         Command::Merge { out, shards } => merge_command(out, shards),
         Command::Search { seed, trials, jobs, json } => search_command(*seed, *trials, *jobs, *json),

@@ -85,8 +85,15 @@ impl Triangle<f64> {
                 return Err(Error::NonFinite { what: format!("triangle {index} vertex {i}"), value: *bad });
             }
         }
-        let ab = self.b - self.a;
-        let ac = self.c - self.a;
+        // Scaled by a power of two (exact) to a largest coordinate in
+        // [1, 2): the fourth powers below then neither overflow (sides of
+        // 1e160) nor underflow (sides of 1e-170), which would have called
+        // a good triangle collinear.
+        let (ab, ac) = (self.b - self.a, self.c - self.a);
+        let largest = ab.amax().max(ac.amax());
+        let exponent = if largest > 0.0 { (largest.log2().floor() as i32).clamp(-1022, 1022) } else { 0 };
+        let scale = f64::from_bits(((1023 - exponent) as u64) << 52);
+        let (ab, ac) = (ab * scale, ac * scale);
         let area2 = norm_squared(&cross(&ab, &ac));
         let bound = 16.0 * f64::EPSILON;
         let limit = bound * bound * norm_squared(&ab) * norm_squared(&ac);

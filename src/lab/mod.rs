@@ -4,6 +4,7 @@
 //! precision; [`runner::run`] plays it frame by frame and measures it with
 //! [`metrics`], independently of the code under test.
 
+pub mod json_float;
 pub mod metrics;
 pub mod rng;
 pub mod runner;

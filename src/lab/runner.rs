@@ -88,7 +88,9 @@ pub struct RunConfig {
 
 /// The metrics of one run. Field names are the lab's public contract
 /// (`sweepslide run --json`, `results.json`): fields are added, never
-/// renamed.
+/// renamed. A NaN or infinite value (a faithful response's position) is
+/// written as the string `"NaN"`, `"inf"` or `"-inf"`
+/// ([`super::json_float`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunResult {
     /// Scene name.
@@ -107,12 +109,14 @@ pub struct RunResult {
     /// bends, which the jitter metric also scores).
     pub motion: String,
     /// Largest exact penetration over the frames (0 if never inside).
+    #[serde(with = "super::json_float::number")]
     pub max_penetration: f64,
     /// Frames that ended with the body inside the geometry.
     pub penetrating_frames: usize,
     /// First frame (0-based) that ended inside the geometry.
     pub first_penetrating_frame: Option<usize>,
     /// Jitter over the last quarter of the frames.
+    #[serde(with = "super::json_float::number")]
     pub jitter: f64,
     /// Largest number of collision checks in one frame (the freeze metric).
     pub max_iterations: u32,
@@ -134,8 +138,10 @@ pub struct RunResult {
     /// in `decision_flips` but not here.
     pub plane_flips: usize,
     /// Position after the last frame.
+    #[serde(with = "super::json_float::triple")]
     pub final_position: [f64; 3],
     /// Snag ratio where the scene has an ideal slide (1 = no snag).
+    #[serde(with = "super::json_float::optional")]
     pub snag: Option<f64>,
     /// Mean wall-clock nanoseconds per `move_body` call.
     pub ns_per_move: f64,
@@ -147,8 +153,10 @@ pub struct FrameRecord {
     /// Frame index.
     pub frame: usize,
     /// Position after the frame.
+    #[serde(with = "super::json_float::triple")]
     pub position: [f64; 3],
     /// Exact penetration after the frame (`None`: nothing within reach).
+    #[serde(with = "super::json_float::optional")]
     pub penetration: Option<f64>,
     /// Collision checks this frame.
     pub iterations: u32,
@@ -213,7 +221,13 @@ fn same_tolerances<T: Real>(opts: &MoveOptions) -> MoveOptions {
 fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let scene = &*cfg.scene;
     let frames = scene.frames;
-    let world = World::<T>::new(scene.mesh.clone());
+    if !(1..=MAX_FRAMES).contains(&frames) {
+        return Err(Error::InvalidArgument {
+            what: "frames".into(),
+            message: format!("a run has 1 to {MAX_FRAMES} frames, got {frames}"),
+        });
+    }
+    let world = World::<T>::new(scene.mesh.clone())?;
     let reference = world.converted::<Mpfr<REFERENCE_BITS>>();
     let body = Ellipsoid::<T>::new(scene.radii)?;
     let ref_body = Ellipsoid::from_radii(to_reference(body.radii()))?;
@@ -222,7 +236,11 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let ref_opts = same_tolerances::<T>(&opts);
     let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let has_gravity = scene.gravity != [0.0; 3];
-    if scene.velocity == [0.0; 3] && !has_gravity {
+    let pushed = match &scene.motion {
+        super::scenes::Motion::Scripted { velocities } => velocities.iter().any(|v| *v != [0.0; 3]),
+        _ => scene.velocity != [0.0; 3],
+    };
+    if !pushed && !has_gravity {
         return Err(Error::ZeroVelocity);
     }
     let mut steering = Steering::new(scene, cfg.seed);
@@ -279,7 +297,12 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         }
     }
     let speed = {
-        let v = if scene.velocity == [0.0; 3] { scene.gravity } else { scene.velocity };
+        // The first push (a scripted case may start at rest), else gravity.
+        let scripted = match &scene.motion {
+            super::scenes::Motion::Scripted { velocities } => velocities.as_slice(),
+            _ => &[],
+        };
+        let v = std::iter::once(&scene.velocity).chain(scripted).find(|v| **v != [0.0; 3]).unwrap_or(&scene.gravity);
         (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
     };
     let result = RunResult {
@@ -311,11 +334,18 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     Ok(RunOutput { result, frames: records })
 }
 
+/// The most frames one run plays (every frame's position and record is
+/// kept, and replayed in `Mpfr<256>`: a million frames take minutes and
+/// about 100 MB).
+pub const MAX_FRAMES: usize = 1_000_000;
+
 /// Runs one configuration.
 ///
 /// # Errors
-/// Bad scene parameters ([`Error::InvalidRadius`], [`Error::ZeroVelocity`],
-/// [`Error::NonFinite`]) or an unusable precision.
+/// Bad scene parameters ([`Error::InvalidRadius`], [`Error::ZeroVelocity`]
+/// when no frame pushes and there is no gravity, [`Error::NonFinite`],
+/// [`Error::InvalidArgument`] for a number of frames outside
+/// `1..=`[`MAX_FRAMES`]) or an unusable precision.
 pub fn run(cfg: &RunConfig) -> Result<RunOutput, Error> {
     match cfg.precision {
         Precision::F32 => run_in::<f32>(cfg),
@@ -324,7 +354,8 @@ pub fn run(cfg: &RunConfig) -> Result<RunOutput, Error> {
     }
 }
 
-/// Runs every configuration on `jobs` threads (0: one per core). The
+/// Runs every configuration on `jobs` threads (0: one per core; never
+/// more than there are configurations). The
 /// results come back in the order of `configs` and do not depend on the
 /// number of threads (each run is sequential and self-contained); only
 /// `ns_per_move` varies between runs. `done` is called after each run.
@@ -336,8 +367,9 @@ pub fn run_all(
     jobs: usize,
     done: &(dyn Fn(&RunConfig) + Sync),
 ) -> Result<Vec<Result<RunOutput, Error>>, Error> {
+    // More threads than runs would only cost their start-up.
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs)
+        .num_threads(if jobs == 0 { 0 } else { jobs.min(configs.len().max(1)) })
         .build()
         .map_err(|e| Error::InvalidArgument { what: "jobs".into(), message: e.to_string() })?;
     Ok(pool.install(|| {

@@ -102,6 +102,10 @@ pub const BUILTIN: &[(&str, &str, &str)] = &[
     ),
 ];
 
+/// The keys of a finding file written by the `compare_responses` fuzz
+/// target: the case under `case`, and what failed.
+const FINDING_KEYS: [&str; 9] = ["case", "target", "response", "precision", "kind", "failure", "frame", "from", "to"];
+
 /// The names of the built-in scenes.
 #[must_use]
 pub fn builtin_names() -> Vec<&'static str> {
@@ -197,15 +201,23 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
         }
         None => (spec, None),
     };
-    let description = BUILTIN
+    let (_, meaning, description) = BUILTIN
         .iter()
         .find(|b| b.0 == name)
-        .map(|b| b.2)
+        .copied()
         .ok_or_else(|| bad(spec, format!("unknown scene (built-in scenes: {})", builtin_names().join(", "))))?;
+    if meaning.is_empty() && param.is_some() {
+        return Err(bad(spec, "this scene takes no parameter".to_string()));
+    }
     let label = |default: f64| format!("{name}:{}", param.unwrap_or(default));
     let in_range = |lo: f64, hi: f64, default: f64| -> Result<f64, Error> {
         let v = param.unwrap_or(default);
         if (lo..=hi).contains(&v) { Ok(v) } else { Err(bad(spec, format!("parameter must lie in [{lo}, {hi}]"))) }
+    };
+    // A count: a whole number in range (never truncated).
+    let count = |lo: f64, hi: f64, default: f64| -> Result<usize, Error> {
+        let v = in_range(lo, hi, default)?;
+        if v.fract() == 0.0 { Ok(v as usize) } else { Err(bad(spec, "parameter must be a whole number".to_string())) }
     };
     let mut b = Builder::default();
     let mut rng = Rng::new(seed);
@@ -220,7 +232,7 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             s
         }
         "tessellated-floor" => {
-            let n = in_range(1.0, 1000.0, 40.0)? as usize;
+            let n = count(1.0, 1000.0, 40.0)?;
             let half = n as f64 / 2.0;
             for i in 0..n {
                 for k in 0..n {
@@ -296,7 +308,7 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             s
         }
         "staircase" => {
-            let steps = in_range(1.0, 1000.0, 20.0)? as usize;
+            let steps = count(1.0, 1000.0, 20.0)?;
             let (rise, run, w) = (0.15, 0.6, 5.0);
             b.quad([-10.0, 0.0, -w], [-10.0, 0.0, w], [0.0, 0.0, w], [0.0, 0.0, -w], UP);
             for i in 0..steps {
@@ -313,7 +325,7 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             s
         }
         "terrain" => {
-            let n = in_range(2.0, 2048.0, 64.0)? as usize;
+            let n = count(2.0, 2048.0, 64.0)?;
             let cell = 0.5;
             let waves: Vec<[f64; 4]> = (0..6)
                 .map(|k| {
@@ -357,7 +369,7 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             s
         }
         "soup" => {
-            let count = in_range(1.0, 100_000.0, 200.0)? as usize;
+            let count = count(1.0, 100_000.0, 200.0)?;
             let mut added = 0;
             while added < count {
                 let centre = [rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), rng.range(-5.0, 5.0)];
@@ -484,15 +496,18 @@ impl Scene {
     ///
     /// # Errors
     /// [`Error::Io`] if the file cannot be read; [`Error::InvalidArgument`]
-    /// for malformed JSON (with its line and column), no frame, or gravity
-    /// that changes between frames; the mesh's errors.
+    /// for malformed JSON (with its line and column), an unknown key (a
+    /// misspelt `gravity` would otherwise run without gravity), no frame, or
+    /// gravity that changes between frames; the mesh's errors.
     pub fn from_case_file(path: &Path) -> Result<Self, Error> {
         #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
         struct Frame {
             velocity: [f64; 3],
             gravity: Option<[f64; 3]>,
         }
         #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
         struct Case {
             triangles: Vec<[[f64; 3]; 3]>,
             radii: [f64; 3],
@@ -503,6 +518,14 @@ impl Scene {
         let text = std::fs::read_to_string(path)
             .map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })?;
         let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        // A finding file's other keys say what failed (the response and
+        // precision to pass on the command line, among others); any key
+        // else is a mistake, not something to ignore.
+        if let (Some(_), Some(keys)) = (value.get("case"), value.as_object())
+            && let Some(k) = keys.keys().find(|k| !FINDING_KEYS.contains(&k.as_str()))
+        {
+            return Err(bad(format!("unknown key `{k}` in a finding file (known: {})", FINDING_KEYS.join(", "))));
+        }
         let case: Case =
             serde_json::from_value(value.get("case").unwrap_or(&value).clone()).map_err(|e| bad(e.to_string()))?;
         let gravity = |f: &Frame| f.gravity.unwrap_or([0.0; 3]);
@@ -539,7 +562,7 @@ impl Scene {
     /// values (the shape may change by that rounding, about `6e-8 |offset|`).
     ///
     /// # Errors
-    /// [`Error::EmptyMesh`] (with the reasons in the error) if the rounding
+    /// [`Error::NoValidTriangle`] (with the first reason) if the rounding
     /// at that offset collapses every triangle.
     pub fn offset(&self, offset: [f64; 3], round_to_f32: bool) -> Result<Scene, Error> {
         if offset == [0.0; 3] {

@@ -113,8 +113,8 @@ fn confirm_jitter(cfg: &RunConfig) -> Result<bool, Error> {
 /// every failure, in trial order.
 ///
 /// # Errors
-/// A scene that cannot be built at its random offset, or a thread-pool
-/// failure.
+/// A scene that cannot be built at its random offset, a run that fails
+/// (naming its command), or a thread-pool failure.
 pub fn search(seed: u64, trials: usize, jobs: usize) -> Result<Vec<Finding>, Error> {
     let mut rng = Rng::new(seed);
     let mut plan = Vec::new();
@@ -138,7 +138,12 @@ pub fn search(seed: u64, trials: usize, jobs: usize) -> Result<Vec<Finding>, Err
     let outputs = run_all(&configs, jobs, &|_| {})?;
     let mut findings = Vec::new();
     for ((t, cfg), out) in plan.iter().zip(outputs) {
-        let Ok(out) = out else { continue };
+        // A run that fails is a defect of the search (its scenes are valid
+        // input), reported with the command that reproduces it.
+        let out = out.map_err(|e| Error::InvalidArgument {
+            what: format!("search run `{}`", command(t, cfg.response, cfg.precision)),
+            message: e.to_string(),
+        })?;
         let r = out.result;
         let mut found = |kind, value: f64| {
             findings.push(Finding { kind, value, result: r.clone(), command: command(t, cfg.response, cfg.precision) });

@@ -79,11 +79,13 @@ pub fn write_runs(dir: &Path, runs: &Runs) -> Result<(), Error> {
 /// Reads `runs.json` from `dir`.
 ///
 /// # Errors
-/// [`Error::Io`] when it is missing or malformed.
+/// [`Error::Io`] when it cannot be read, [`Error::InvalidArgument`] (with
+/// the line and column) when it is malformed.
 pub fn read_runs(dir: &Path) -> Result<Runs, Error> {
     let path = dir.join("runs.json");
     let text = std::fs::read_to_string(&path).map_err(|e| io(&path, e))?;
-    serde_json::from_str(&text).map_err(|e| io(&path, e))
+    serde_json::from_str(&text)
+        .map_err(|e| Error::InvalidArgument { what: path.display().to_string(), message: e.to_string() })
 }
 
 /// Combines shards into the whole matrix.

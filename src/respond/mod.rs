@@ -106,7 +106,72 @@ impl MoveOptions {
     pub fn effective_detection(&self) -> Detection {
         self.detection.unwrap_or_else(|| self.response.default_detection())
     }
+
+    /// Checks every field against its documented range ([`move_body`] does
+    /// this first): tolerances finite and not negative, `max_padding` in
+    /// `(0, 1)`, `free_tilt` and Fauerby's `units_per_meter` positive, and
+    /// the counts (`max_iterations` at least 1) at most [`MAX_ROUNDS`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the first field out of range.
+    pub fn validate(&self) -> Result<(), Error> {
+        let (d, r) = (&self.detect, &self.robust);
+        not_negative("detect.touch_ulps", d.touch_ulps)?;
+        not_negative("detect.approach_ulps", d.approach_ulps)?;
+        not_negative("robust.padding_ulps", r.padding_ulps)?;
+        not_negative("robust.position_ulps", r.position_ulps)?;
+        not_negative("robust.parallel_ulps", r.parallel_ulps)?;
+        not_negative("robust.feasible_ulps", r.feasible_ulps)?;
+        not_negative("linahan.very_close_distance", self.linahan.very_close_distance)?;
+        positive("robust.free_tilt", r.free_tilt)?;
+        positive("fauerby.units_per_meter", self.fauerby.units_per_meter)?;
+        if !(r.max_padding > 0.0 && r.max_padding < 1.0) {
+            return Err(out_of_range("robust.max_padding", format!("must lie in (0, 1) radii, got {}", r.max_padding)));
+        }
+        count("robust.max_iterations", r.max_iterations, 1)?;
+        count("robust.depenetration_rounds", r.depenetration_rounds, 0)?;
+        count("fauerby.max_depth", self.fauerby.max_depth, 1)
+    }
 }
+
+/// The error for option `what` (kept out of line: a valid option costs a
+/// comparison).
+#[cold]
+#[inline(never)]
+fn out_of_range(what: &str, message: String) -> Error {
+    Error::InvalidArgument { what: what.into(), message }
+}
+
+#[inline(always)]
+fn not_negative(what: &str, x: f64) -> Result<(), Error> {
+    if (0.0..=f64::MAX).contains(&x) {
+        Ok(())
+    } else {
+        Err(out_of_range(what, format!("must be finite and not negative, got {x}")))
+    }
+}
+
+#[inline(always)]
+fn positive(what: &str, x: f64) -> Result<(), Error> {
+    if x > 0.0 && x <= f64::MAX {
+        Ok(())
+    } else {
+        Err(out_of_range(what, format!("must be finite and positive, got {x}")))
+    }
+}
+
+#[inline(always)]
+fn count(what: &str, n: u32, least: u32) -> Result<(), Error> {
+    if (least..=MAX_ROUNDS).contains(&n) {
+        Ok(())
+    } else {
+        Err(out_of_range(what, format!("must lie in {least}..={MAX_ROUNDS}, got {n}")))
+    }
+}
+
+/// The most sweeps, push-out rounds or recursion levels any option may ask
+/// for (the defaults are 4 to 8): a bound on one move's work.
+pub const MAX_ROUNDS: u32 = 1024;
 
 /// Why a pass of the response stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -240,8 +305,13 @@ impl<T: Real> Frame<'_, T> {
 /// that starts embedded out of the geometry.
 ///
 /// # Errors
-/// [`Error::NonFinite`] if the position, velocity or gravity has a NaN or
-/// infinite coordinate. Never panics; the faithful responses may return a
+/// [`Error::InvalidArgument`] for options out of range
+/// ([`MoveOptions::validate`]); [`Error::NonFinite`] if the position,
+/// velocity or gravity has a NaN or
+/// infinite coordinate; [`Error::InvalidArgument`] if, measured in the
+/// body's radii (eSpace), the position or the displacements' length is not
+/// representable in `T` (their squares overflow: beyond about `1.8e19`
+/// radii in `f32`, `1.3e154` in `f64`). Never panics; the faithful responses may return a
 /// NaN position where their arithmetic does (that is what the lab counts).
 pub fn move_body<T: Real>(
     world: &World<T>,
@@ -251,6 +321,7 @@ pub fn move_body<T: Real>(
     gravity: Option<&Vec3<T>>,
     options: &MoveOptions,
 ) -> Result<Move<T>, Error> {
+    options.validate()?;
     check_finite("position", position)?;
     check_finite("velocity", velocity)?;
     let zero = Vec3::zeros();
@@ -264,6 +335,20 @@ pub fn move_body<T: Real>(
     let trace = Trace { iterations: 0, contacts: SmallVec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
     let moves = [velocity.clone(), gravity.clone()];
     let start_magnitude = body.to_espace(position).iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max);
+    // In radii, the displacements' lengths (their sum is in the reach) and
+    // the start must be representable: beyond, a length squared is
+    // infinite and no response can work (the robust one would stop, the
+    // faithful ones give NaN).
+    if !(reach.radius.is_finite() && start_magnitude.is_finite()) {
+        return Err(Error::InvalidArgument {
+            what: "move".into(),
+            message: format!(
+                "measured in the body's radii, the displacement ({:e}) or the position ({start_magnitude:e}) \
+                 overflows this precision: move in smaller steps or use a wider precision",
+                (reach.radius.clone() - T::c(crate::detect::REACH_MARGIN)).to_f64(),
+            ),
+        });
+    }
     let mut frame = Frame {
         world,
         body,

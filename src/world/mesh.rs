@@ -51,12 +51,24 @@ impl TriangleMesh {
     /// triangles and lists why in [`TriangleMesh::skipped`].
     ///
     /// # Errors
-    /// [`Error::EmptyMesh`] when no valid triangle remains.
+    /// [`Error::EmptyMesh`] when no triangle is given,
+    /// [`Error::NoValidTriangle`] when none is valid.
     pub fn new_skipping_invalid(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
         let (mesh, skipped) = Self::build(vertices, triangles, |_, e| e);
-        let mut mesh = mesh.ok_or(Error::EmptyMesh)?;
-        mesh.skipped = skipped;
-        Ok(mesh)
+        Self::with_skipped(mesh, skipped)
+    }
+
+    /// The mesh `build` gave, with its skipped triangles, or the error that
+    /// says why there is none.
+    fn with_skipped(mesh: Option<Self>, mut skipped: Vec<Error>) -> Result<Self, Error> {
+        match mesh {
+            Some(mut mesh) => {
+                mesh.skipped = skipped;
+                Ok(mesh)
+            }
+            None if skipped.is_empty() => Err(Error::EmptyMesh),
+            None => Err(Error::NoValidTriangle { count: skipped.len(), first: Box::new(skipped.swap_remove(0)) }),
+        }
     }
 
     /// Loads a Wavefront OBJ file; degenerate faces are skipped and listed
@@ -64,11 +76,19 @@ impl TriangleMesh {
     ///
     /// # Errors
     /// [`Error::Io`] if the file cannot be read, [`Error::Obj`] (with the
-    /// line number) if it is malformed, [`Error::EmptyMesh`] if it holds no
-    /// valid triangle.
+    /// line number) if it is malformed or not UTF-8 text, [`Error::EmptyMesh`] if it holds no
+    /// face, [`Error::NoValidTriangle`] if no face is valid.
     pub fn from_obj_file(path: &Path) -> Result<Self, Error> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })?;
+        let bytes = std::fs::read(path).map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            let at = e.utf8_error().valid_up_to();
+            let bytes = e.as_bytes();
+            Error::Obj {
+                path: path.to_path_buf(),
+                line: 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count(),
+                message: format!("not UTF-8 text (byte {:#04x} at offset {at})", bytes[at]),
+            }
+        })?;
         Self::from_obj_str(&text, path)
     }
 
@@ -85,9 +105,7 @@ impl TriangleMesh {
             line: lines[t],
             message: e.to_string(),
         });
-        let mut mesh = mesh.ok_or(Error::EmptyMesh)?;
-        mesh.skipped = skipped;
-        Ok(mesh)
+        Self::with_skipped(mesh, skipped)
     }
 
     /// Validates and indexes; invalid triangles go to the returned list
@@ -156,6 +174,10 @@ impl TriangleMesh {
     }
 
     /// Triangle `t` with its vertex positions.
+    ///
+    /// # Panics
+    /// If `t` is not below the mesh's [`TriangleMesh::len`] (an index
+    /// that the mesh, its BVH or a hit gave is always in range).
     #[must_use]
     pub fn triangle(&self, t: u32) -> Triangle<f64> {
         corners(&self.vertices, &self.triangles[t as usize])
@@ -180,6 +202,10 @@ impl TriangleMesh {
     }
 
     /// The active edges and vertices of triangle `t`.
+    ///
+    /// # Panics
+    /// If `t` is not below the mesh's [`TriangleMesh::len`] (an index
+    /// that the mesh, its BVH or a hit gave is always in range).
     #[must_use]
     pub fn active(&self, t: u32) -> ActiveFeatures {
         self.active[t as usize]
@@ -229,10 +255,22 @@ pub struct World<T: Real> {
 }
 
 impl<T: Real> World<T> {
-    /// Converts `mesh` into backend `T`.
-    #[must_use]
-    pub fn new(mesh: Arc<TriangleMesh>) -> Self {
+    /// Converts `mesh` into backend `T` (each coordinate rounded to
+    /// nearest).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the first vertex with a coordinate
+    /// beyond `T`'s range (above about `3.4e38` in `f32`): rounded to
+    /// infinity, it would make every query meaningless.
+    pub fn new(mesh: Arc<TriangleMesh>) -> Result<Self, Error> {
         let vertices: Vec<Vec3<T>> = mesh.vertices.iter().map(from_f64).collect();
+        if let Some(i) = vertices.iter().position(|v| !v.iter().all(Real::is_finite)) {
+            let v = mesh.vertices[i];
+            return Err(Error::InvalidArgument {
+                what: format!("vertex {i}"),
+                message: format!("({:e}, {:e}, {:e}) overflows this precision", v.x, v.y, v.z),
+            });
+        }
         let slack = mesh
             .vertices
             .iter()
@@ -240,7 +278,7 @@ impl<T: Real> World<T> {
             .flat_map(|(v, w)| (0..3).map(move |i| (w[i].to_f64() - v[i]).abs()))
             .fold(0.0, f64::max);
         let slack = if slack > 0.0 { (slack * (1.0 + 4.0 * f64::EPSILON)).next_up() } else { 0.0 };
-        World { mesh, vertices, slack }
+        Ok(World { mesh, vertices, slack })
     }
 
     /// The same world in another backend `U`, converted from this world's
@@ -266,6 +304,10 @@ impl<T: Real> World<T> {
     }
 
     /// Triangle `t` in backend `T`.
+    ///
+    /// # Panics
+    /// If `t` is not below the mesh's [`TriangleMesh::len`] (an index
+    /// that the mesh, its BVH or a hit gave is always in range).
     #[must_use]
     pub fn triangle(&self, t: u32) -> Triangle<T> {
         let [a, b, c] = self.corners(t).map(Clone::clone);
@@ -273,6 +315,10 @@ impl<T: Real> World<T> {
     }
 
     /// The corners of triangle `t` in backend `T`, borrowed.
+    ///
+    /// # Panics
+    /// If `t` is not below the mesh's [`TriangleMesh::len`] (an index
+    /// that the mesh, its BVH or a hit gave is always in range).
     #[must_use]
     pub fn corners(&self, t: u32) -> [&Vec3<T>; 3] {
         self.mesh.triangles[t as usize].map(|i| &self.vertices[i as usize])

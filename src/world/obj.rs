@@ -23,7 +23,8 @@ pub struct ObjData {
     pub lines: Vec<usize>,
 }
 
-/// Parses OBJ text; `path` only names the source in errors.
+/// Parses OBJ text; `path` only names the source in errors. A leading
+/// byte-order mark (as some Windows tools write) is ignored.
 ///
 /// # Errors
 /// [`Error::Obj`] with the 1-based line number for a malformed number, a
@@ -32,6 +33,7 @@ pub struct ObjData {
 pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
     let mut data = ObjData::default();
     let err = |line: usize, message: String| Error::Obj { path: path.to_path_buf(), line, message };
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (n, raw) in text.lines().enumerate() {
         let line = n + 1;
         let content = raw.split('#').next().unwrap_or("");

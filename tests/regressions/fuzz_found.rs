@@ -34,7 +34,8 @@ const CORNER: [[[f64; 3]; 3]; 6] = [
 fn worst_penetration<T: Real>(soup: &Soup, radii: [f64; 3], start: [f64; 3], frames: &[([f64; 3], [f64; 3])]) -> f64 {
     let vertices: Vec<[f64; 3]> = soup.iter().flatten().copied().collect();
     let indices = (0..soup.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
-    let world = World::<T>::new(Arc::new(TriangleMesh::new(vertices, indices).unwrap()));
+    let world =
+        World::<T>::new(Arc::new(TriangleMesh::new(vertices, indices).unwrap())).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(radii).unwrap();
     let v = |x: [f64; 3]| vec3::<T>(x[0], x[1], x[2]);
     let mut p = v(start);
@@ -170,7 +171,7 @@ fn rounding_level_touches_end_outside() {
 fn huge_coordinates_never_give_a_negative_time() {
     let obj = "o cube\nv -1 -1 -1\nv 1 77777777777 1\nv -11  -5 -1\nv 0 1 -1\nv -1 1 -1\nv -0 -1 1\nv 1 -1 1\nv 1 17777777 6\nf 1 5 5 2\nf  1 3 8\n";
     let mesh = TriangleMesh::from_obj_str(obj, Path::new("huge.obj")).unwrap();
-    let world = World::<f32>::new(Arc::new(mesh));
+    let world = World::<f32>::new(Arc::new(mesh)).expect("the mesh fits the backend");
     let body = Ellipsoid::<f32>::sphere(1000.0).unwrap();
     let hit = sweep_world(
         &world,
@@ -734,7 +735,8 @@ fn sphere_wedged_in_a_far_groove_under_strong_gravity_slides_out_and_stays_out()
     // (the groove ends at z = -30), instead of freezing in it.
     let vertices: Vec<[f64; 3]> = soup.iter().flatten().copied().collect();
     let indices = (0..soup.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
-    let world = World::<f64>::new(Arc::new(TriangleMesh::new(vertices, indices).unwrap()));
+    let world =
+        World::<f64>::new(Arc::new(TriangleMesh::new(vertices, indices).unwrap())).expect("the mesh fits the backend");
     let body = Ellipsoid::<f64>::sphere(1.0).unwrap();
     let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
     let moved =
@@ -890,7 +892,8 @@ fn ellipsoid_sliding_into_a_slot_one_ulp_wide_ends_within_its_rounding_without_t
     let frame = ([4.850193476342769, 0.0, 0.0], [0.0, 0.0, -0.0011297508522950994]);
     let vertices: Vec<[f64; 3]> = soup.iter().flatten().copied().collect();
     let indices = (0..soup.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
-    let world = World::<f64>::new(Arc::new(TriangleMesh::new(vertices, indices).unwrap()));
+    let world =
+        World::<f64>::new(Arc::new(TriangleMesh::new(vertices, indices).unwrap())).expect("the mesh fits the backend");
     let body = Ellipsoid::<f64>::new(radii).unwrap();
     let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
     let mut p = v([-474.812761070203, 276.7783985707782, 768.6555087744742]);

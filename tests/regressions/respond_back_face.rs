@@ -44,7 +44,7 @@ fn from_behind(spec: &str, start: [f64; 3], velocity: [f64; 3]) -> Scene {
 
 /// Positions after each frame and their exact penetrations.
 fn simulate<T: Real>(s: &Scene, response: Response) -> Vec<([f64; 3], Option<f64>)> {
-    let world = World::<T>::new(s.mesh.clone());
+    let world = World::<T>::new(s.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(s.radii).unwrap();
     let vel = v::<T>(s.velocity);
     let opts = MoveOptions::new(response);

@@ -32,7 +32,8 @@ fn tall_ellipsoid_slides_down_a_steep_wall_onto_the_floor() {
         [-20.0, 20.0, -12.0],
     ];
     let triangles = vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]];
-    let world = World::<f64>::new(Arc::new(TriangleMesh::new(vertices, triangles).unwrap()));
+    let world = World::<f64>::new(Arc::new(TriangleMesh::new(vertices, triangles).unwrap()))
+        .expect("the mesh fits the backend");
     let body = Ellipsoid::<f64>::new([1.0, 1.0, 10.0]).unwrap();
     let start = vec3::<f64>(0.0, 0.0, 0.0);
     let m = move_body(&world, &body, &start, &vec3(1.0, 0.0, 0.0), None, &MoveOptions::new(Response::Robust)).unwrap();

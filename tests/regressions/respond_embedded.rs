@@ -41,7 +41,7 @@ struct Run<T: Real> {
 }
 
 fn simulate<T: Real>(s: &Scene, opts: &MoveOptions) -> Run<T> {
-    let world = World::<T>::new(s.mesh.clone());
+    let world = World::<T>::new(s.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(s.radii).unwrap();
     let vel = v::<T>(s.velocity);
     let mut p = v::<T>(s.start);
@@ -64,7 +64,7 @@ fn simulate<T: Real>(s: &Scene, opts: &MoveOptions) -> Run<T> {
 /// directions it must never move against (relative to its start).
 fn assert_pushed_out<T: Real>(s: &Scene, opts: &MoveOptions, out: &[[f64; 3]]) {
     let name = format!("{} robust {}", s.name, T::name());
-    let world = World::<T>::new(s.mesh.clone());
+    let world = World::<T>::new(s.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(s.radii).unwrap();
     let start_pen = penetration(&world, body.radii(), &v::<T>(s.start)).unwrap();
     assert!(start_pen > 0.25, "{name}: the test must start embedded ({start_pen})");

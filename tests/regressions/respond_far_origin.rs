@@ -70,7 +70,7 @@ impl<T: Real> Run<T> {
 /// Runs `s` for its default number of frames; stops after the first
 /// non-finite position.
 fn simulate<T: Real>(s: &Scene, response: Response) -> Run<T> {
-    let world = World::<T>::new(s.mesh.clone());
+    let world = World::<T>::new(s.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(s.radii).unwrap();
     let vel = v::<T>(s.velocity);
     let opts = MoveOptions::new(response);

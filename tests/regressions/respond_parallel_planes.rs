@@ -38,7 +38,7 @@ type Run<T> = (Vec<Vec3<T>>, Vec<Trace<T>>, Vec<Option<f64>>);
 
 /// Runs up to `frames` frames; stops after the first non-finite position.
 fn simulate<T: Real>(s: &Scene, response: Response, frames: usize) -> Run<T> {
-    let world = World::<T>::new(s.mesh.clone());
+    let world = World::<T>::new(s.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(s.radii).unwrap();
     let vel = v::<T>(s.velocity);
     let opts = MoveOptions::new(response);

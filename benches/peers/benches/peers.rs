@@ -193,7 +193,7 @@ fn bench_ours<T: Real>(
     frames: &[FrameInput],
     response: Response,
 ) {
-    let world = World::<T>::new(mesh.clone());
+    let world = World::<T>::new(mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(radii).expect("valid radii");
     let gravity: Vec3<T> = vec3(gravity[0], gravity[1], gravity[2]);
     let opts = MoveOptions::new(response);

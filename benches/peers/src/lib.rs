@@ -43,7 +43,7 @@ pub struct FrameInput {
 /// `count + 10_000` frames.
 #[must_use]
 pub fn trajectory<T: Real>(scene: &Scene, seed: u64, count: usize) -> Vec<FrameInput> {
-    let world = World::<T>::new(scene.mesh.clone());
+    let world = World::<T>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(scene.radii).expect("scene radii are valid");
     let opts = MoveOptions::new(Response::Robust);
     let v = |a: [f64; 3]| vec3::<T>(a[0], a[1], a[2]);

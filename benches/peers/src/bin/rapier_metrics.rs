@@ -86,7 +86,7 @@ fn rapier_row(scene: &Scene, config: RapierConfig, flags: TriMeshFlags, label: &
             break;
         }
     }
-    let world = World::<f64>::new(scene.mesh.clone());
+    let world = World::<f64>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let radii: Vec3<f64> = vec3(scene.radii[0], scene.radii[1], scene.radii[2]);
     let trajectory: Vec<Vec3<f64>> = positions.iter().map(|q| vec3(q[0], q[1], q[2])).collect();
     let (mut max_pen, mut pen_frames, mut first) = (0.0f64, 0, None);
@@ -161,8 +161,8 @@ fn print_table(scene: &str, rows: &[Row]) {
 fn terrain_agreement() {
     let scene = build("terrain:224", 1).expect("terrain scene");
     let frames = trajectory::<f32>(&scene, 1, 256);
-    let world32 = World::<f32>::new(scene.mesh.clone());
-    let world64 = World::<f64>::new(scene.mesh.clone());
+    let world32 = World::<f32>::new(scene.mesh.clone()).expect("the mesh fits the backend");
+    let world64 = World::<f64>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<f32>::new(scene.radii).expect("valid radii");
     let radii: Vec3<f64> = vec3(scene.radii[0], scene.radii[1], scene.radii[2]);
     let gravity: Vec3<f32> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
