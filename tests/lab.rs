@@ -381,3 +381,42 @@ fn resting_contacts_are_met_without_sweeps_and_as_the_sweeps_would() {
         }
     }
 }
+
+#[test]
+fn velocity_given_on_the_command_line_replaces_a_cases_recorded_velocities() {
+    let dir = std::env::temp_dir().join(format!("sweepslide-velocity-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scripted.json");
+    let floor = "[[-50,0,-50],[-50,0,50],[50,0,50]], [[-50,0,-50],[50,0,50],[50,0,-50]]";
+    let text = format!(
+        r#"{{"triangles": [{floor}], "radii": [1,1,1], "start": [0,1.5,0],
+        "frames": [{{"velocity": [0.1,0,0], "gravity": null}}, {{"velocity": [0.2,0,0], "gravity": null}}]}}"#
+    );
+    std::fs::write(&path, text).unwrap();
+    let x_after = |extra: &[&str]| {
+        let mut args = vec!["run", "--case", path.to_str().unwrap(), "--json"];
+        args.extend(extra);
+        let out = sweepslide(&args);
+        assert!(out.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&out.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        (v["final_position"][0].as_f64().unwrap(), v["final_position"][2].as_f64().unwrap())
+    };
+    let (x, z) = x_after(&[]);
+    assert!((x - 0.3).abs() < 1e-9 && z == 0.0, "the recorded motion: {x}, {z}");
+    let (x, z) = x_after(&["--velocity=0,0,0.5"]);
+    assert!(x == 0.0 && (z - 1.0).abs() < 1e-9, "the velocity asked for: {x}, {z}");
+}
+
+#[test]
+fn bad_scene_parameters_and_frame_counts_exit_with_code_2() {
+    for args in [
+        ["run", "--scene", "floor:5", "--frames", "3"],
+        ["run", "--scene", "staircase:20.7", "--frames", "3"],
+        ["run", "--scene", "floor", "--frames", "0"],
+        ["run", "--scene", "floor", "--frames", "18446744073709551615"],
+    ] {
+        let out = sweepslide(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: "), "{args:?}");
+    }
+}
