@@ -276,6 +276,10 @@ fn write_trace(path: &std::path::Path, out: &RunOutput) -> Result<(), Error> {
 
 fn run_command(args: &RunArgs) -> Result<(), Failure> {
     let scene = scene_of(args)?;
+    // An unwritable trace file is reported before the run, not after it.
+    if let Some(path) = &args.trace {
+        std::fs::File::create(path).map_err(|e| Error::Io { path: path.clone(), message: e.to_string() })?;
+    }
     let cfg = RunConfig {
         scene: Arc::new(scene),
         response: match args.response {
@@ -343,6 +347,9 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
             Some(dir) => Ok(list(dir)),
             None => Ok(list(std::path::Path::new(default))),
         };
+    // An unwritable output directory is reported before the runs.
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| Failure(Error::Io { path: args.out.clone(), message: e.to_string() }))?;
     let meshes = files_in(&args.meshes, "--meshes", "../shared/meshes", scenes::meshes_in)?;
     let cases = files_in(&args.cases, "--cases", "scenes/fuzz", scenes::cases_in)?;
     let (info, entries) = matrix::matrix(args.quick, &meshes, &cases);

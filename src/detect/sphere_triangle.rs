@@ -193,6 +193,11 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   constraint on a gently convex one (the body rides over it).
 ///
 /// Ties: face before edges before vertices, lower feature index first.
+///
+/// Inputs must be finite (this kernel does not check, to stay cheap:
+/// [`crate::detect::sweep_world`] and [`crate::respond::move_body`] do,
+/// and return [`crate::Error::NonFinite`]); with a NaN or infinite input
+/// the answer is meaningless.
 #[must_use]
 pub fn sweep_robust<T: Real>(
     c: &Candidate<T>,
