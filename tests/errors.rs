@@ -721,3 +721,20 @@ fn run_frames_out_of_range_and_a_case_starting_at_rest() {
     scene.motion = Motion::Scripted { velocities: vec![[0.0; 3]; 2] };
     assert_eq!(run(&config(scene)).unwrap_err(), Error::ZeroVelocity);
 }
+
+#[test]
+fn world_refuses_a_used_vertex_beyond_the_backends_range_and_ignores_an_unused_one() {
+    use sweepslide::world::World;
+    let v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1e39, 0.0, 0.0]];
+    let unused = std::sync::Arc::new(TriangleMesh::new(v.clone(), vec![[0, 1, 2]]).unwrap());
+    assert!(World::<f32>::new(unused).is_ok());
+    let used = std::sync::Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [1, 3, 2]]).unwrap());
+    match World::<f32>::new(used.clone()) {
+        Err(Error::InvalidArgument { what, message }) => {
+            assert_eq!(what, "vertex 3");
+            assert!(message.contains("overflows"), "{message}");
+        }
+        other => panic!("{:?}", other.map(|w| w.mesh().len())),
+    }
+    assert!(World::<f64>::new(used).is_ok());
+}

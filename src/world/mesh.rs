@@ -259,24 +259,26 @@ impl<T: Real> World<T> {
     /// nearest).
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] naming the first vertex with a coordinate
-    /// beyond `T`'s range (above about `3.4e38` in `f32`): rounded to
-    /// infinity, it would make every query meaningless.
+    /// [`Error::InvalidArgument`] naming the first vertex of a triangle
+    /// with a coordinate beyond `T`'s range (above about `3.4e38` in
+    /// `f32`): rounded to infinity, it would make every query meaningless.
+    /// Vertices that no triangle uses are not checked.
     pub fn new(mesh: Arc<TriangleMesh>) -> Result<Self, Error> {
         let vertices: Vec<Vec3<T>> = mesh.vertices.iter().map(from_f64).collect();
-        if let Some(i) = vertices.iter().position(|v| !v.iter().all(Real::is_finite)) {
+        // Only the vertices of triangles matter (a file may list others).
+        let mut used = vec![false; vertices.len()];
+        mesh.triangles.iter().flatten().for_each(|&i| used[i as usize] = true);
+        let used = || (0..vertices.len()).filter(|&i| used[i]);
+        if let Some(i) = used().find(|&i| !vertices[i].iter().all(Real::is_finite)) {
             let v = mesh.vertices[i];
             return Err(Error::InvalidArgument {
                 what: format!("vertex {i}"),
                 message: format!("({:e}, {:e}, {:e}) overflows this precision", v.x, v.y, v.z),
             });
         }
-        let slack = mesh
-            .vertices
-            .iter()
-            .zip(&vertices)
-            .flat_map(|(v, w)| (0..3).map(move |i| (w[i].to_f64() - v[i]).abs()))
-            .fold(0.0, f64::max);
+        let (given, rounded) = (&mesh.vertices, &vertices);
+        let slack =
+            used().flat_map(|i| (0..3).map(move |k| (rounded[i][k].to_f64() - given[i][k]).abs())).fold(0.0, f64::max);
         let slack = if slack > 0.0 { (slack * (1.0 + 4.0 * f64::EPSILON)).next_up() } else { 0.0 };
         Ok(World { mesh, vertices, slack })
     }
