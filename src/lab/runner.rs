@@ -236,11 +236,13 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let ref_opts = same_tolerances::<T>(&opts);
     let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let has_gravity = scene.gravity != [0.0; 3];
-    let pushed = match &scene.motion {
-        super::scenes::Motion::Scripted { velocities } => velocities.iter().any(|v| *v != [0.0; 3]),
-        _ => scene.velocity != [0.0; 3],
+    // The first push (a scripted case may start at rest and move later).
+    let scripted = match &scene.motion {
+        super::scenes::Motion::Scripted { velocities } => velocities.as_slice(),
+        _ => &[],
     };
-    if !pushed && !has_gravity {
+    let first_push = std::iter::once(&scene.velocity).chain(scripted).find(|v| **v != [0.0; 3]);
+    if first_push.is_none() && !has_gravity {
         return Err(Error::ZeroVelocity);
     }
     let mut steering = Steering::new(scene, cfg.seed);
@@ -297,12 +299,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         }
     }
     let speed = {
-        // The first push (a scripted case may start at rest), else gravity.
-        let scripted = match &scene.motion {
-            super::scenes::Motion::Scripted { velocities } => velocities.as_slice(),
-            _ => &[],
-        };
-        let v = std::iter::once(&scene.velocity).chain(scripted).find(|v| **v != [0.0; 3]).unwrap_or(&scene.gravity);
+        let v = first_push.unwrap_or(&scene.gravity);
         (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
     };
     let result = RunResult {
