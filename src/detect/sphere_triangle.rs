@@ -162,7 +162,8 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   never reported.
 /// * Face: plane distance taken from the vertex nearest the centre; the
 ///   contact point is inside when all three edge orientations are
-///   non-negative. At a grazing angle the plane's time is accurate in
+///   non-negative, judged in the coordinate plane most nearly parallel to
+///   the triangle (two products per side; see `inside`). At a grazing angle the plane's time is accurate in
 ///   distance but not along the track, so a contact point found outside
 ///   is clipped: the hit is the earliest moment, among those where the
 ///   plane distance is within `tol` of 1, at which the centre's projection
@@ -299,7 +300,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     // Edges from the given vertices, not from `rel` (see `Candidate::edges`).
     let edges = &c.edges;
     let mut normal = c.normal.clone();
-    let dist_sq = p.map(norm_squared);
+    let dist_sq = [norm_squared(p[0]), norm_squared(p[1]), norm_squared(p[2])];
     let nearest = nearest_vertex(&dist_sq);
 
     // Which side the centre (the origin, now) is on, from the nearest vertex.
@@ -323,8 +324,6 @@ pub(crate) fn sweep_robust_within<T: Real>(
             return None;
         }
     }
-    let far = max_abs(p[2], max_abs(p[1], max_abs(p[0], one.clone())));
-    let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
 
     // Face interior: the plane reached with the contact point inside.
     let face_hit = || face_contact(c, &rel, normal.as_ref()?, &plane_dist, base, vel, opts.touch_ulps, &wins);
@@ -342,6 +341,8 @@ pub(crate) fn sweep_robust_within<T: Real>(
     // rounding, of order `u * far * k` with `k` the shape factor: Ericson's
     // barycentric closest point drifts along a sliver): this rejects most
     // near misses before the edge and vertex quadratics.
+    let far = max_abs(p[2], max_abs(p[1], max_abs(p[0], one.clone())));
+    let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
     let origin = Vec3::zeros();
     let (closest, feature) = closest_point_on_triangle(&origin, &rel);
     let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape;
@@ -641,11 +642,12 @@ fn face_contact<T: Real>(
     // Orientation against the triangle's own winding normal (not the
     // side-flipped `n`), so back faces are found too.
     let winding = c.normal.as_ref().unwrap_or(n);
-    let (t, contact) = match side_outside(c, rel, winding, &contact) {
-        None => (t, contact),
-        Some(side) => {
+    let (t, contact) = if inside(c, rel, winding, &contact) {
+        (t, contact)
+    } else {
+        {
             let window = Window { t, nv, tol: T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel) };
-            let t = face_window(c, rel, winding, vel, &contact, &window, side)?;
+            let t = face_window(c, rel, winding, vel, &contact, &window)?;
             if !wins(&t) {
                 return None;
             }
@@ -656,22 +658,42 @@ fn face_contact<T: Real>(
     Some(face_hit(c, n, t, contact, base))
 }
 
-/// The first side of the triangle (index and orientation, `|edge|` times
-/// the signed distance to the side's line, against `winding`) that the
-/// contact point `contact` (relative to the sweep's start, as `rel`) lies
-/// outside of, if any.
+/// Whether the contact point `contact` (relative to the sweep's start, as
+/// `rel`) lies inside the triangle or on its boundary, judged in the
+/// coordinate plane most nearly parallel to the triangle: each side's
+/// orientation is the component along the normal's largest coordinate
+/// `k` of `e_i x (contact - p_i)`, two products instead of the nine of a
+/// triple product with `winding` (the triangle's unit normal), its sign
+/// taken against `winding[k]`, which is at least `1 / sqrt 3` in size.
+/// For a point in the plane both are `winding[k]` times the same value;
+/// a point off the plane by `delta` (the contact point is, by rounding)
+/// moves it by at most `sqrt 3 delta |e_i|`, a rounding of the point's own
+/// size. A point judged outside goes to [`face_window`], which works in
+/// three dimensions and finds the earliest moment, within the touching
+/// tolerance, at which it is inside.
 #[inline]
-fn side_outside<T: Real>(
-    c: &Candidate<T>,
-    rel: &Triangle<T>,
-    winding: &Vec3<T>,
-    contact: &Vec3<T>,
-) -> Option<(usize, T)> {
+fn inside<T: Real>(c: &Candidate<T>, rel: &Triangle<T>, winding: &Vec3<T>, contact: &Vec3<T>) -> bool {
     let p = [&rel.a, &rel.b, &rel.c];
-    (0..3).find_map(|i| {
-        let o = dot(&cross(&c.edges[i], &(contact - p[i])), winding);
-        (o < T::zero()).then_some((i, o))
-    })
+    // `(i1, i2)` follow `k` cyclically, so that `e[i1] d[i2] - e[i2] d[i1]`
+    // is the `k` component of `e x d`. Written out per axis so that every
+    // index is a constant.
+    let inside_along = |k: usize, i1: usize, i2: usize| {
+        let w = &winding[k];
+        (0..3).all(|i| {
+            let e = &c.edges[i];
+            let o =
+                e[i1].clone() * (contact[i2].clone() - &p[i][i2]) - e[i2].clone() * (contact[i1].clone() - &p[i][i1]);
+            !(o * w < T::zero())
+        })
+    };
+    let [x, y, z] = [0, 1, 2].map(|k| winding[k].clone().abs());
+    if x >= y && x >= z {
+        inside_along(0, 1, 2)
+    } else if y >= z {
+        inside_along(1, 2, 0)
+    } else {
+        inside_along(2, 0, 1)
+    }
 }
 
 /// The face hit of candidate `c` at time `t`, `contact` relative to the
@@ -721,8 +743,7 @@ fn face_entered_touching<T: Real>(
     }
     let contact = -n.clone();
     let winding = c.normal.as_ref().unwrap_or(n);
-    let side = side_outside(c, rel, winding, &contact).unwrap_or((0, zero.clone()));
-    let t = face_window(c, rel, winding, vel, &contact, &Window { t: zero, nv, tol: reach }, side)?;
+    let t = face_window(c, rel, winding, vel, &contact, &Window { t: zero, nv, tol: reach })?;
     if !wins(&t) {
         return None;
     }
@@ -749,9 +770,7 @@ struct Window<T: Real> {
 /// outside the triangle: the earliest time of the window (clipped to
 /// `t >= 0`) at which the centre's projection onto the plane is inside the
 /// triangle, if any. `contact` is the contact point at the window's `t`,
-/// `winding` the triangle's unit normal, and `side` the first side found
-/// with a negative orientation, with that orientation (`|edge|` times the
-/// signed distance to the side's line).
+/// `winding` the triangle's unit normal.
 ///
 /// Over the window the plane distance stays within `tol` (plus its own
 /// rounding, a few `u s`) of 1 and decreases, so a hit at the earliest
@@ -759,9 +778,10 @@ struct Window<T: Real> {
 /// entered before by more than `tol`. Each side's orientation is linear in
 /// time, `o_i(t') = o_i(t) + (t' - t) d_i` with
 /// `d_i = (e_i x vel) . winding`: the projection is inside from
-/// `t - o_i / d_i` on where `d_i > 0`, until then where `d_i < 0`. Within
-/// the window the projection moves at most `tol |vel| / |nv|`, so a point
-/// beyond the first side by more than that is ruled out at once.
+/// `t - o_i / d_i` on where `d_i > 0`, until then where `d_i < 0` (`o_i`
+/// is `|e_i|` times the signed distance to the side's line). Within the
+/// window the projection moves at most `tol |vel| / |nv|`, so a point
+/// beyond a side by more than that is ruled out at once.
 #[cold]
 #[inline(never)]
 fn face_window<T: Real>(
@@ -771,19 +791,18 @@ fn face_window<T: Real>(
     vel: &Vec3<T>,
     contact: &Vec3<T>,
     window: &Window<T>,
-    (side, orientation): (usize, T),
 ) -> Option<T> {
     let zero = T::zero();
     let Window { t, nv, tol } = window;
     let reach = tol.clone() * tol * norm_squared(vel);
-    if orientation.clone() * orientation * nv * nv > reach * norm_squared(&c.edges[side]) {
-        return None;
-    }
     let half = tol.clone() / -nv.clone();
     let mut lo = (t.clone() - &half).max(zero.clone());
     let mut hi = t.clone() + half;
     for (e, q) in c.edges.iter().zip([&rel.a, &rel.b, &rel.c]) {
         let o = dot(&cross(e, &(contact - q)), winding);
+        if o < zero && o.clone() * &o * nv * nv > reach.clone() * norm_squared(e) {
+            return None;
+        }
         let d = dot(&cross(e, vel), winding);
         if d > zero {
             lo = lo.max(t.clone() - o / d);
