@@ -25,96 +25,14 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::sync::Arc;
 use sweepslide::detect::{Candidate, DetectOptions, Detection, earliest_hit, sweep_world};
-use sweepslide::geom::{Ellipsoid, Triangle, Vec3, vec3};
+use sweepslide::geom::{Ellipsoid, Triangle, Vec3};
 use sweepslide::world::{TriangleMesh, World};
 use sweepslide::{Mpfr, Real};
 
-const CASES: usize = 256;
+#[path = "common/triangle_cases.rs"]
+mod triangle_cases;
 
-/// Deterministic uniform numbers in `[0, 1)` (SplitMix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-
-    fn point(&mut self, half: f64) -> [f64; 3] {
-        std::array::from_fn(|_| self.range(-half, half))
-    }
-}
-
-/// One sphere-vs-triangle input, in `f64`.
-#[derive(Clone, Copy)]
-struct Case {
-    tri: [[f64; 3]; 3],
-    base: [f64; 3],
-    vel: [f64; 3],
-}
-
-fn v<T: Real>(p: &[f64; 3]) -> Vec3<T> {
-    vec3(p[0], p[1], p[2])
-}
-
-fn tri<T: Real>(t: &[[f64; 3]; 3]) -> Triangle<T> {
-    Triangle::new(v(&t[0]), v(&t[1]), v(&t[2]))
-}
-
-/// `CASES` hits and `CASES` near misses, classified by the robust `f64`
-/// test: random unit-scale triangles near a random path of length 0.5
-/// to 3.
-fn cases() -> (Vec<Case>, Vec<Case>) {
-    let mut rng = Rng(0x6465_7465_6374);
-    let (mut hits, mut misses) = (Vec::new(), Vec::new());
-    let opts = DetectOptions::default();
-    while hits.len() < CASES || misses.len() < CASES {
-        let base = rng.point(0.5);
-        let vel = rng.point(1.0).map(|x| x * rng.range(0.5, 3.0));
-        let tau = rng.next();
-        let centre: [f64; 3] = std::array::from_fn(|k| base[k] + tau * vel[k] + rng.range(-2.0, 2.0));
-        let tri: [[f64; 3]; 3] = std::array::from_fn(|_| {
-            let d = rng.point(1.5);
-            std::array::from_fn(|k| centre[k] + d[k])
-        });
-        let case = Case { tri, base, vel };
-        let c = Candidate::lone(0, self::tri::<f64>(&tri));
-        if c.normal.is_none() {
-            continue;
-        }
-        match Detection::Robust.sweep(&c, &v(&base), &v(&vel), &opts, None) {
-            Some(h) if h.t > 0.0 => {
-                if hits.len() < CASES {
-                    hits.push(case);
-                }
-            }
-            Some(_) => {}
-            None => {
-                // A near miss: the boxes overlap.
-                let end: [f64; 3] = std::array::from_fn(|k| base[k] + vel[k]);
-                let overlaps = (0..3).all(|k| {
-                    let (lo, hi) = (base[k].min(end[k]) - 1.0, base[k].max(end[k]) + 1.0);
-                    let (tlo, thi) = (
-                        tri.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min),
-                        tri.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max),
-                    );
-                    tlo <= hi && thi >= lo
-                });
-                if overlaps && misses.len() < CASES {
-                    misses.push(case);
-                }
-            }
-        }
-    }
-    (hits, misses)
-}
+use triangle_cases::{CASES, Case, Rng, cases, tri, v};
 
 fn bench_triangle_for<T: Real>(c: &mut Criterion, hits: &[Case], misses: &[Case]) {
     let opts = DetectOptions::default();
