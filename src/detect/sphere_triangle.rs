@@ -163,12 +163,13 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 /// * Face: plane distance taken from the vertex nearest the centre; the
 ///   contact point is inside when all three edge orientations are
 ///   non-negative, judged in the coordinate plane most nearly parallel to
-///   the triangle (two products per side; see `inside`). At a grazing angle the plane's time is accurate in
-///   distance but not along the track, so a contact point found outside
-///   is clipped: the hit is the earliest moment, among those where the
-///   plane distance is within `tol` of 1, at which the centre's projection
-///   is inside the triangle (see `face_window`); otherwise the edge tests
-///   decide, which agree to second order.
+///   the triangle (two products per side; see `side_outside`). At a
+///   grazing angle the plane's time is accurate in distance but not along
+///   the track, so a contact point found outside is clipped: the hit is
+///   the earliest moment, among those where the plane distance is within
+///   `tol` of 1, at which the centre's projection is inside the triangle
+///   (see `face_window`); otherwise the edge tests decide, which agree to
+///   second order.
 /// * Edges and vertices: squared-distance quadratics from cross products
 ///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
 ///   `(e.v)^2`), their discriminants from Lagrange's identity (no
@@ -642,12 +643,11 @@ fn face_contact<T: Real>(
     // Orientation against the triangle's own winding normal (not the
     // side-flipped `n`), so back faces are found too.
     let winding = c.normal.as_ref().unwrap_or(n);
-    let (t, contact) = if inside(c, rel, winding, &contact) {
-        (t, contact)
-    } else {
-        {
+    let (t, contact) = match side_outside(c, rel, winding, &contact) {
+        None => (t, contact),
+        Some(side) => {
             let window = Window { t, nv, tol: T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel) };
-            let t = face_window(c, rel, winding, vel, &contact, &window)?;
+            let t = face_window(c, rel, winding, vel, &contact, &window, Some(side))?;
             if !wins(&t) {
                 return None;
             }
@@ -658,41 +658,41 @@ fn face_contact<T: Real>(
     Some(face_hit(c, n, t, contact, base))
 }
 
-/// Whether the contact point `contact` (relative to the sweep's start, as
-/// `rel`) lies inside the triangle or on its boundary, judged in the
-/// coordinate plane most nearly parallel to the triangle: each side's
-/// orientation is the component along the normal's largest coordinate
-/// `k` of `e_i x (contact - p_i)`, two products instead of the nine of a
-/// triple product with `winding` (the triangle's unit normal), its sign
-/// taken against `winding[k]`, which is at least `1 / sqrt 3` in size.
-/// For a point in the plane both are `winding[k]` times the same value;
-/// a point off the plane by `delta` (the contact point is, by rounding)
-/// moves it by at most `sqrt 3 delta |e_i|`, a rounding of the point's own
-/// size. A point judged outside goes to [`face_window`], which works in
-/// three dimensions and finds the earliest moment, within the touching
-/// tolerance, at which it is inside.
+/// The first side of the triangle that the contact point `contact`
+/// (relative to the sweep's start, as `rel`) lies outside of, if any,
+/// judged in the coordinate plane most nearly parallel to the triangle:
+/// each side's orientation is the component along the normal's largest
+/// coordinate `k` of `e_i x (contact - p_i)`, two products instead of the
+/// nine of a triple product with `winding` (the triangle's unit normal),
+/// its sign taken against `winding[k]`, which is at least `1 / sqrt 3` in
+/// size. For a point in the plane both are `winding[k]` times the same
+/// value; a point off the plane by `delta` (the contact point is, by
+/// rounding) moves it by at most `sqrt 3 delta |e_i|`, a rounding of the
+/// point's own size. A point judged outside goes to [`face_window`], which
+/// works in three dimensions and finds the earliest moment, within the
+/// touching tolerance, at which it is inside.
 #[inline]
-fn inside<T: Real>(c: &Candidate<T>, rel: &Triangle<T>, winding: &Vec3<T>, contact: &Vec3<T>) -> bool {
+fn side_outside<T: Real>(c: &Candidate<T>, rel: &Triangle<T>, winding: &Vec3<T>, contact: &Vec3<T>) -> Option<usize> {
     let p = [&rel.a, &rel.b, &rel.c];
     // `(i1, i2)` follow `k` cyclically, so that `e[i1] d[i2] - e[i2] d[i1]`
     // is the `k` component of `e x d`. Written out per axis so that every
     // index is a constant.
-    let inside_along = |k: usize, i1: usize, i2: usize| {
+    let outside_along = |k: usize, i1: usize, i2: usize| {
         let w = &winding[k];
-        (0..3).all(|i| {
+        (0..3).find(|&i| {
             let e = &c.edges[i];
             let o =
                 e[i1].clone() * (contact[i2].clone() - &p[i][i2]) - e[i2].clone() * (contact[i1].clone() - &p[i][i1]);
-            !(o * w < T::zero())
+            o * w < T::zero()
         })
     };
     let [x, y, z] = [0, 1, 2].map(|k| winding[k].clone().abs());
     if x >= y && x >= z {
-        inside_along(0, 1, 2)
+        outside_along(0, 1, 2)
     } else if y >= z {
-        inside_along(1, 2, 0)
+        outside_along(1, 2, 0)
     } else {
-        inside_along(2, 0, 1)
+        outside_along(2, 0, 1)
     }
 }
 
@@ -743,7 +743,8 @@ fn face_entered_touching<T: Real>(
     }
     let contact = -n.clone();
     let winding = c.normal.as_ref().unwrap_or(n);
-    let t = face_window(c, rel, winding, vel, &contact, &Window { t: zero, nv, tol: reach })?;
+    let side = side_outside(c, rel, winding, &contact);
+    let t = face_window(c, rel, winding, vel, &contact, &Window { t: zero, nv, tol: reach }, side)?;
     if !wins(&t) {
         return None;
     }
@@ -770,7 +771,8 @@ struct Window<T: Real> {
 /// outside the triangle: the earliest time of the window (clipped to
 /// `t >= 0`) at which the centre's projection onto the plane is inside the
 /// triangle, if any. `contact` is the contact point at the window's `t`,
-/// `winding` the triangle's unit normal.
+/// `winding` the triangle's unit normal, and `side` the side that
+/// [`side_outside`] found the point outside of, if any.
 ///
 /// Over the window the plane distance stays within `tol` (plus its own
 /// rounding, a few `u s`) of 1 and decreases, so a hit at the earliest
@@ -781,7 +783,9 @@ struct Window<T: Real> {
 /// `t - o_i / d_i` on where `d_i > 0`, until then where `d_i < 0` (`o_i`
 /// is `|e_i|` times the signed distance to the side's line). Within the
 /// window the projection moves at most `tol |vel| / |nv|`, so a point
-/// beyond a side by more than that is ruled out at once.
+/// beyond `side` by more than that (its orientation taken afresh in three
+/// dimensions) is ruled out at once: for an edge or vertex hit the face's
+/// contact point is outside, and most calls end here.
 #[cold]
 #[inline(never)]
 fn face_window<T: Real>(
@@ -791,18 +795,23 @@ fn face_window<T: Real>(
     vel: &Vec3<T>,
     contact: &Vec3<T>,
     window: &Window<T>,
+    side: Option<usize>,
 ) -> Option<T> {
     let zero = T::zero();
     let Window { t, nv, tol } = window;
-    let reach = tol.clone() * tol * norm_squared(vel);
+    let p = [&rel.a, &rel.b, &rel.c];
+    let orientation = |i: usize| dot(&cross(&c.edges[i], &(contact - p[i])), winding);
+    if let Some(i) = side {
+        let o = orientation(i);
+        if o < zero && o.clone() * o * nv * nv > tol.clone() * tol * norm_squared(vel) * norm_squared(&c.edges[i]) {
+            return None;
+        }
+    }
     let half = tol.clone() / -nv.clone();
     let mut lo = (t.clone() - &half).max(zero.clone());
     let mut hi = t.clone() + half;
-    for (e, q) in c.edges.iter().zip([&rel.a, &rel.b, &rel.c]) {
-        let o = dot(&cross(e, &(contact - q)), winding);
-        if o < zero && o.clone() * &o * nv * nv > reach.clone() * norm_squared(e) {
-            return None;
-        }
+    for (i, e) in c.edges.iter().enumerate() {
+        let o = orientation(i);
         let d = dot(&cross(e, vel), winding);
         if d > zero {
             lo = lo.max(t.clone() - o / d);
