@@ -452,12 +452,13 @@ pub(crate) fn sweep_robust_within<T: Real>(
         // identity, since m x k = e (m . a): no fourth powers cancel.
         let det = dot(&m, a);
         let m2 = norm_squared(&m);
-        let disc = e2.clone() * (m2 - det.clone() * &det);
-        let Some(t) = stable_entry_root(&-dot(&m, &k), &c, &disc).filter(|t| better(t, &best)) else {
+        let disc = e2.clone() * (m2.clone() - det.clone() * &det);
+        let entry = EdgeEntry { e2, m2, half_b: -dot(&m, &k), c, disc };
+        let Some(t) = stable_entry_root(&entry.half_b, &entry.c, &entry.disc).filter(|t| better(t, &best)) else {
             ends.iter().for_each(|&v| vertex_open[v] = false);
             continue;
         };
-        let f = dot(&(&(vel * t.clone()) - a), e) / &e2;
+        let f = dot(&(&(vel * t.clone()) - a), e) / &entry.e2;
         let hi = lo.clone() + &one;
         // Entered beyond an end: maybe within rounding of it, or at a
         // grazing angle (see `edge_beyond_end`).
@@ -467,7 +468,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
         // of the sweep ruled out the vertex reached half way).
         let (t, f) = if f < lo || f > hi {
             let magnitude = far.clone() + &swept.speed;
-            let touch = edge_beyond_end(e, a, vel, (&t, &f), (&lo, &hi), &magnitude, opts.touch_ulps);
+            let touch = edge_beyond_end(e, a, vel, &entry, (&t, &f), (&lo, &hi), &magnitude, opts.touch_ulps);
             let Some(touch) = touch.filter(|(t, _)| better(t, &best)) else {
                 vertex_open[if f < lo { ends[1] } else { ends[0] }] = false;
                 continue;
@@ -499,13 +500,33 @@ pub(crate) fn sweep_robust_within<T: Real>(
     Some(best?.into_hit(Some(base), &face_normal, index, false))
 }
 
+/// The entry of the unit sphere moving by `vel` into the unit cylinder
+/// around an edge's line (through its nearer end `a`, along `e`):
+/// `m2 t^2 + 2 half_b t + c = 0` is `|e|^2` times the squared distance to
+/// the line less 1, with `m = e x vel`, `k = e x a`, `c = |k|^2 - |e|^2`,
+/// `half_b = -(m . k)` and the discriminant from Lagrange's identity,
+/// `disc = |e|^2 (|m|^2 - (m . a)^2)` (see [`sweep_robust`]).
+struct EdgeEntry<T: Real> {
+    /// `|e|^2`.
+    e2: T,
+    /// `|e x vel|^2`.
+    m2: T,
+    /// Half the linear coefficient.
+    half_b: T,
+    /// The constant coefficient (positive: the body starts outside).
+    c: T,
+    /// The discriminant.
+    disc: T,
+}
+
 /// For the robust test's edges: the touch `(t', f')` (`f'` the position
 /// along the edge, in `[lo, hi]`) when the unit cylinder around the line
 /// through `a` along `e` is entered at time `t` at a position `f` beyond an
-/// end, the sphere moving by `vel`; `magnitude` is `far + |vel|` (the
-/// largest relative coordinate plus the speed). The entry's quadratic is
-/// recomputed here, as the caller computed it, so that the caller's loop
-/// keeps nothing alive for this rare case.
+/// end, the sphere moving by `vel`, as the caller's `entry` found it;
+/// `magnitude` is `far + |vel|` (the largest relative coordinate plus the
+/// speed). (A vertex hit enters both of the vertex's edges' cylinders
+/// beyond it, so this is common: about 0.8 calls per hit of the random
+/// hits that `benches/detect.rs` times.)
 ///
 /// * **Within rounding of the end** (fuzz finding F18). The position
 ///   comes from `centre - a`, whose terms carry a few `u` of `magnitude`:
@@ -530,53 +551,46 @@ pub(crate) fn sweep_robust_within<T: Real>(
 ///   the band's end), and the position moves at most `|vel| / |e|` per
 ///   unit time, so an entry farther beyond the end than that is ruled out
 ///   without solving for the band.
-#[cold]
 #[inline(never)]
+#[allow(clippy::too_many_arguments)]
 fn edge_beyond_end<T: Real>(
     e: &Vec3<T>,
     a: &Vec3<T>,
     vel: &Vec3<T>,
+    entry: &EdgeEntry<T>,
     (t, f): (&T, &T),
     (lo, hi): (&T, &T),
     magnitude: &T,
     touch_ulps: f64,
 ) -> Option<(T, T)> {
     let zero = T::zero();
-    let e2 = norm_squared(e);
+    let EdgeEntry { e2, m2, half_b, c, disc } = entry;
     let excess = if f < lo { lo.clone() - f } else { f.clone() - hi };
     let excess_sq = excess.clone() * excess;
     let position = T::c(8.0 * T::unit_roundoff()) * magnitude;
-    if excess_sq.clone() * &e2 <= position.clone() * position {
+    if excess_sq.clone() * e2 <= position.clone() * position {
         return Some((t.clone(), f.clone().max(lo.clone()).min(hi.clone())));
     }
     let tol = T::c(touch_ulps * T::unit_roundoff()) * magnitude;
     let two_tol = tol.clone() * T::c(2.0);
     let tol_sq = tol.clone() * &tol;
-    // The quadratic m2 t^2 + 2 half_b t + c = 0 of the caller, for radius 1.
-    let m = cross(e, vel);
-    let k = cross(e, a);
-    let c = norm_squared(&k) - &e2;
-    let det = dot(&m, a);
-    let m2 = norm_squared(&m);
-    let disc = e2.clone() * (m2.clone() - det.clone() * &det);
-    let half_b = -dot(&m, &k);
     // For radius 1 - tol and 1 + tol: c and disc shift by e2 (1 - r^2).
     let shrink = e2.clone() * (two_tol.clone() - &tol_sq);
     let inner = disc.clone() - m2.clone() * &shrink;
-    if inner > zero && excess_sq * &inner > two_tol.clone() * &two_tol * &e2 * norm_squared(vel) {
+    if inner > zero && excess_sq * &inner > two_tol.clone() * &two_tol * e2 * norm_squared(vel) {
         return None;
     }
     let grow = e2.clone() * (two_tol + tol_sq);
     let outer_c = c.clone() - &grow;
-    let outer_disc = disc + m2.clone() * &grow;
-    let start = if outer_c > zero { stable_entry_root(&half_b, &outer_c, &outer_disc)? } else { zero.clone() };
+    let outer_disc = disc.clone() + m2.clone() * &grow;
+    let start = if outer_c > zero { stable_entry_root(half_b, &outer_c, &outer_disc)? } else { zero.clone() };
     let end = if inner > zero {
-        stable_entry_root(&half_b, &(c + shrink), &inner)?
+        stable_entry_root(half_b, &(c.clone() + shrink), &inner)?
     } else {
-        (outer_disc.sqrt() - &half_b) / m2
+        (outer_disc.sqrt() - half_b) / m2
     };
     // f(t') = f + (t' - t) (vel . e) / e2, within [lo, hi].
-    let rate = dot(vel, e) / &e2;
+    let rate = dot(vel, e) / e2;
     let (enter, leave) = if rate > zero {
         (t.clone() + (lo.clone() - f) / &rate, t.clone() + (hi.clone() - f) / &rate)
     } else if rate < zero {
