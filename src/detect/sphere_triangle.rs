@@ -659,9 +659,12 @@ fn face_contact<T: Real>(
     let winding = c.normal.as_ref().unwrap_or(n);
     let (t, contact) = match side_outside(c, rel, winding, &contact) {
         None => (t, contact),
-        Some(side) => {
+        Some(outside) => {
             let window = Window { t, nv, tol: T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel) };
-            let t = face_window(c, rel, winding, vel, &contact, &window, Some(side))?;
+            if window.rules_out(&outside, c, vel) {
+                return None;
+            }
+            let t = face_window(c, rel, winding, vel, &contact, &window)?;
             if !wins(&t) {
                 return None;
             }
@@ -670,6 +673,17 @@ fn face_contact<T: Real>(
         }
     };
     Some(face_hit(c, n, t, contact, base))
+}
+
+/// A side of a triangle that a point lies outside of, as [`side_outside`]
+/// judged it.
+struct Outside<T: Real> {
+    /// Which side (edge `i`, from vertex `i` to vertex `i + 1`).
+    side: usize,
+    /// The size of the point's orientation in the coordinate plane: `|e_i|`
+    /// times its distance to the side's line times `|winding[k]|`, which is
+    /// between `1 / sqrt 3` and 1.
+    by: T,
 }
 
 /// The first side of the triangle that the contact point `contact`
@@ -682,22 +696,28 @@ fn face_contact<T: Real>(
 /// size. For a point in the plane both are `winding[k]` times the same
 /// value; a point off the plane by `delta` (the contact point is, by
 /// rounding) moves it by at most `sqrt 3 delta |e_i|`, a rounding of the
-/// point's own size. A point judged outside goes to [`face_window`], which
-/// works in three dimensions and finds the earliest moment, within the
-/// touching tolerance, at which it is inside.
+/// point's own size. A point judged outside goes to [`Window::rules_out`]
+/// and, unless it is far outside, to [`face_window`], which works in three
+/// dimensions and finds the earliest moment, within the touching
+/// tolerance, at which it is inside.
 #[inline]
-fn side_outside<T: Real>(c: &Candidate<T>, rel: &Triangle<T>, winding: &Vec3<T>, contact: &Vec3<T>) -> Option<usize> {
+fn side_outside<T: Real>(
+    c: &Candidate<T>,
+    rel: &Triangle<T>,
+    winding: &Vec3<T>,
+    contact: &Vec3<T>,
+) -> Option<Outside<T>> {
     let p = [&rel.a, &rel.b, &rel.c];
     // `(i1, i2)` follow `k` cyclically, so that `e[i1] d[i2] - e[i2] d[i1]`
     // is the `k` component of `e x d`. Written out per axis so that every
     // index is a constant.
     let outside_along = |k: usize, i1: usize, i2: usize| {
         let w = &winding[k];
-        (0..3).find(|&i| {
+        (0..3).find_map(|i| {
             let e = &c.edges[i];
             let o =
                 e[i1].clone() * (contact[i2].clone() - &p[i][i2]) - e[i2].clone() * (contact[i1].clone() - &p[i][i1]);
-            o * w < T::zero()
+            (o.clone() * w < T::zero()).then(|| Outside { side: i, by: o.abs() })
         })
     };
     let [x, y, z] = [0, 1, 2].map(|k| winding[k].clone().abs());
@@ -757,8 +777,11 @@ fn face_entered_touching<T: Real>(
     }
     let contact = -n.clone();
     let winding = c.normal.as_ref().unwrap_or(n);
-    let side = side_outside(c, rel, winding, &contact);
-    let t = face_window(c, rel, winding, vel, &contact, &Window { t: zero, nv, tol: reach }, side)?;
+    let window = Window { t: zero, nv, tol: reach };
+    if side_outside(c, rel, winding, &contact).is_some_and(|outside| window.rules_out(&outside, c, vel)) {
+        return None;
+    }
+    let t = face_window(c, rel, winding, vel, &contact, &window)?;
     if !wins(&t) {
         return None;
     }
@@ -781,12 +804,30 @@ struct Window<T: Real> {
     tol: T,
 }
 
+impl<T: Real> Window<T> {
+    /// Whether a contact point outside a side as [`side_outside`] found it
+    /// stays outside over the whole window, so that [`face_window`] need
+    /// not run: within the window the projection moves at most
+    /// `tol |vel| / |nv|`, and a point is beyond the side's line by
+    /// `o / |e_i|` or more, `o` the size of its orientation in the
+    /// coordinate plane (at most the three-dimensional one, which is
+    /// `|e_i|` times the distance, for a point in the plane; the contact
+    /// point is off it by its rounding, a few `u s`, far below `tol`). For
+    /// an edge or vertex hit the face's contact point is outside, and most
+    /// face tests end here.
+    fn rules_out(&self, outside: &Outside<T>, c: &Candidate<T>, vel: &Vec3<T>) -> bool {
+        let Window { nv, tol, .. } = self;
+        let o = &outside.by;
+        o.clone() * o * nv * nv > tol.clone() * tol * norm_squared(vel) * norm_squared(&c.edges[outside.side])
+    }
+}
+
 /// For [`face_contact`], when the contact point at the plane's time is
 /// outside the triangle: the earliest time of the window (clipped to
 /// `t >= 0`) at which the centre's projection onto the plane is inside the
 /// triangle, if any. `contact` is the contact point at the window's `t`,
-/// `winding` the triangle's unit normal, and `side` the side that
-/// [`side_outside`] found the point outside of, if any.
+/// `winding` the triangle's unit normal (callers first try
+/// [`Window::rules_out`]).
 ///
 /// Over the window the plane distance stays within `tol` (plus its own
 /// rounding, a few `u s`) of 1 and decreases, so a hit at the earliest
@@ -795,11 +836,7 @@ struct Window<T: Real> {
 /// time, `o_i(t') = o_i(t) + (t' - t) d_i` with
 /// `d_i = (e_i x vel) . winding`: the projection is inside from
 /// `t - o_i / d_i` on where `d_i > 0`, until then where `d_i < 0` (`o_i`
-/// is `|e_i|` times the signed distance to the side's line). Within the
-/// window the projection moves at most `tol |vel| / |nv|`, so a point
-/// beyond `side` by more than that (its orientation taken afresh in three
-/// dimensions) is ruled out at once: for an edge or vertex hit the face's
-/// contact point is outside, and most calls end here.
+/// is `|e_i|` times the signed distance to the side's line).
 #[cold]
 #[inline(never)]
 fn face_window<T: Real>(
@@ -809,18 +846,11 @@ fn face_window<T: Real>(
     vel: &Vec3<T>,
     contact: &Vec3<T>,
     window: &Window<T>,
-    side: Option<usize>,
 ) -> Option<T> {
     let zero = T::zero();
     let Window { t, nv, tol } = window;
     let p = [&rel.a, &rel.b, &rel.c];
     let orientation = |i: usize| dot(&cross(&c.edges[i], &(contact - p[i])), winding);
-    if let Some(i) = side {
-        let o = orientation(i);
-        if o < zero && o.clone() * o * nv * nv > tol.clone() * tol * norm_squared(vel) * norm_squared(&c.edges[i]) {
-            return None;
-        }
-    }
     let half = tol.clone() / -nv.clone();
     let mut lo = (t.clone() - &half).max(zero.clone());
     let mut hi = t.clone() + half;
