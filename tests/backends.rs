@@ -15,7 +15,7 @@ use rug::Float;
 use std::cmp::Ordering;
 use sweepslide::geom::{
     Ellipsoid, Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize,
-    vec3,
+    normalize_near_unit, vec3,
 };
 use sweepslide::real::with_precision;
 use sweepslide::{Mpfr, MpfrDyn, Real};
@@ -361,6 +361,31 @@ fn check_vec_helpers<T: Real>() {
     assert!(normalize(&vec3::<T>(-0.0, 0.0, -0.0)).is_none());
     assert!(normalize(&vec3::<T>(f64::NAN, 1.0, 0.0)).is_none());
     assert!(normalize(&vec3::<T>(f64::INFINITY, 1.0, 0.0)).is_none());
+
+    // normalize_near_unit: one Newton step from 1 within sqrt(u) of unit
+    // length, normalize beyond. Lengths 1 + k sqrt(u) / 4 in scattered
+    // directions come out unit to within the documented 4u (the step's
+    // 3e^2/8 and the roundings), parallel to the input.
+    let u = T::unit_roundoff();
+    for k in -4..=4 {
+        for d in [[1.0, 2.0, 2.0], [-0.3, 0.9, 0.1], [5.0, -1.0, -7.0], [0.0, 0.0, 1.0]] {
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let scale = (1.0 + f64::from(k) * u.sqrt() / 4.0) / len;
+            let a = vec3::<T>(d[0] * scale, d[1] * scale, d[2] * scale);
+            let n = normalize_near_unit(&a).expect("finite and near unit");
+            let excess = (norm_squared(&n) - T::one()).abs().to_f64();
+            assert!(excess <= 8.0 * u, "{}: |n|^2 - 1 = {excess:e} for k = {k}, {d:?}", T::name());
+            let skew = norm(&cross(&n, &a)).to_f64();
+            assert!(skew <= 4.0 * u * 8.0, "{}: n x a = {skew:e}", T::name());
+        }
+    }
+    assert_vec_is(&normalize_near_unit(&vec3::<T>(0.0, 0.0, -1.0)).unwrap(), [0.0, 0.0, -1.0]);
+    // Far from unit length it is normalize, bit for bit.
+    let far = vec3::<T>(3.0, -1.0, 4.0);
+    assert!(normalize_near_unit(&far) == normalize(&far));
+    assert!(normalize_near_unit(&vec3::<T>(0.0, 0.0, 0.0)).is_none());
+    assert!(normalize_near_unit(&vec3::<T>(f64::NAN, 1.0, 0.0)).is_none());
+    assert!(normalize_near_unit(&vec3::<T>(f64::INFINITY, 0.0, 0.0)).is_none());
 }
 
 fn check_plane<T: Real>() {

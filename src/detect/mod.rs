@@ -157,6 +157,9 @@ pub struct Candidate<T: Real> {
     /// order `u |vertex - base|`, which can exceed a small triangle far from
     /// the start (a fast body) and destroy its shape.
     pub edges: [Vec3<T>; 3],
+    /// Their squared lengths `|edges[i]|^2` (rounded as [`norm_squared`]
+    /// rounds them).
+    pub edge_sq: [T; 3],
     /// Shape factor `k = max |edge|^2 / |(b - a) x (c - a)|` (at least
     /// `2 / sqrt(3)`; large for a sliver, infinite when degenerate in this
     /// precision): the closest point of a triangle is computed with an error
@@ -178,7 +181,8 @@ impl<T: Real> Candidate<T> {
     fn with_bounds(index: u32, triangle: Triangle<T>, active: ActiveFeatures, lo: Vec3<T>, hi: Vec3<T>) -> Self {
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
         let edges = [b - a, c - b, a - c];
-        let [l0, l1, l2] = [norm_squared(&edges[0]), norm_squared(&edges[1]), norm_squared(&edges[2])];
+        let edge_sq = [norm_squared(&edges[0]), norm_squared(&edges[1]), norm_squared(&edges[2])];
+        let [l0, l1, l2] = edge_sq.clone();
         // The two edges after the longest, in cyclic order: their cross
         // product is `(b - a) x (c - a)` in exact arithmetic.
         let (raw, longest) = if l0 >= l1 && l0 >= l2 {
@@ -196,7 +200,7 @@ impl<T: Real> Candidate<T> {
         // `linahan-nan-narrow-slot-diagonal` case, in `f32` and `Mpfr<24>`.)
         let normal = has_area.then(|| raw.map(|x| x / &area2));
         let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
-        Candidate { index, triangle, active, normal, lo, hi, edges, shape }
+        Candidate { index, triangle, active, normal, lo, hi, edges, edge_sq, shape }
     }
 
     /// The tilt factor of [`Candidate::normal`]: `|e_i| |e_j| / |e_i x e_j|`
@@ -207,7 +211,7 @@ impl<T: Real> Candidate<T> {
     /// distance to the plane per unit of lever arm.
     #[must_use]
     pub fn tilt(&self) -> f64 {
-        let [l0, l1, l2] = [0, 1, 2].map(|i| norm_squared(&self.edges[i]).to_f64());
+        let [l0, l1, l2] = [0, 1, 2].map(|i| self.edge_sq[i].to_f64());
         let longest = l0.max(l1).max(l2);
         // `|e_i|^2 |e_j|^2 = l0 l1 l2 / longest` and `shape = longest / |e_i x e_j|`.
         (l0 * l1 * l2 / longest).sqrt() * self.shape.to_f64() / longest

@@ -13,4 +13,6 @@ mod vec;
 pub use ellipsoid::Ellipsoid;
 pub use plane::Plane;
 pub use triangle::{Feature, Triangle, closest_point_on_triangle};
-pub use vec::{Vec3, cross, dot, from_f64, is_finite, max_abs, norm, norm_squared, normalize, to_f64, vec3};
+pub use vec::{
+    Vec3, cross, dot, from_f64, is_finite, max_abs, norm, norm_squared, normalize, normalize_near_unit, to_f64, vec3,
+};
