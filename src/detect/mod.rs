@@ -12,7 +12,7 @@ pub mod sphere_triangle;
 
 pub use sphere_triangle::{Proximity, fauerby_point_in_triangle, proximity, sweep_fauerby, sweep_robust};
 
-use sphere_triangle::{SweptBox, sweep_robust_within};
+use sphere_triangle::{SweptBox, sweep_robust_with_speed};
 
 use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, cross, is_finite, norm, norm_squared, normalize};
 use crate::world::{ActiveFeatures, World};
@@ -368,7 +368,7 @@ pub fn earliest_hit<'a, T: Real + 'a>(
         let hit = match detection {
             Detection::Fauerby => sweep_fauerby(&c.triangle, base, vel, c.index),
             Detection::Robust if swept.misses(c) => None,
-            Detection::Robust => sweep_robust_within(c, base, vel, &swept, opts, limit),
+            Detection::Robust => sweep_robust_with_speed(c, base, vel, &swept.speed, opts, limit),
         };
         if let Some(h) = hit {
             let better = match &best {

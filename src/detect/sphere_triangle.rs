@@ -197,6 +197,13 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///
 /// Ties: face before edges before vertices, lower feature index first.
 ///
+/// No broadphase of its own: the first rejection is the plane's (below).
+/// A caller with many triangles goes through [`crate::detect::earliest_hit`]
+/// or [`crate::detect::sweep_world`], which first reject candidates whose
+/// boxes miss the sweep's box and ball, computed once per sweep. (Built
+/// for each call here, that box cost a test 5-10% of its time, hits and
+/// near misses alike: `docs/performance.md`.)
+///
 /// Inputs must be finite (this kernel does not check, to stay cheap:
 /// [`crate::detect::sweep_world`] and [`crate::respond::move_body`] do,
 /// and return [`crate::Error::NonFinite`]); with a NaN or infinite input
@@ -209,11 +216,7 @@ pub fn sweep_robust<T: Real>(
     opts: &DetectOptions,
     limit: Option<&T>,
 ) -> Option<Hit<T>> {
-    let reach = SweptBox::new(base, vel);
-    if reach.misses(c) {
-        return None;
-    }
-    sweep_robust_within(c, base, vel, &reach, opts, limit)
+    sweep_robust_with_speed(c, base, vel, &norm(vel), opts, limit)
 }
 
 /// The region the unit sphere swept from `base` by `vel` can touch, for the
@@ -221,15 +224,16 @@ pub fn sweep_robust<T: Real>(
 /// and the ball around the whole sweep (centre `base + vel / 2`, radius
 /// `|vel| / 2 + 1`), both grown by [`reach`] plus `8 u` times the largest
 /// coordinate involved (the rounding of the box corners and of the
-/// candidate-box distance). Computed once per sweep: a candidate whose box
-/// misses either is out.
+/// candidate-box distance). Computed once per sweep by
+/// [`crate::detect::earliest_hit`]: a candidate whose box misses either is
+/// out.
 pub(crate) struct SweptBox<T: Real> {
     lo: Vec3<T>,
     hi: Vec3<T>,
     mid: Vec3<T>,
     ball_sq: T,
     /// `|vel|`.
-    speed: T,
+    pub(crate) speed: T,
 }
 
 /// The radius plus the margin every quick rejection of the robust sweep
@@ -262,12 +266,13 @@ impl<T: Real> SweptBox<T> {
     }
 }
 
-/// [`sweep_robust`] for a candidate whose box meets `swept`.
-pub(crate) fn sweep_robust_within<T: Real>(
+/// [`sweep_robust`] given `speed = |vel|` (as [`norm`] rounds it), for a
+/// caller that computed it once per sweep.
+pub(crate) fn sweep_robust_with_speed<T: Real>(
     c: &Candidate<T>,
     base: &Vec3<T>,
     vel: &Vec3<T>,
-    swept: &SweptBox<T>,
+    speed: &T,
     opts: &DetectOptions,
     limit: Option<&T>,
 ) -> Option<Hit<T>> {
@@ -287,7 +292,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     // resting on a surface (a padding of a few hundred `u` away) and moving
     // along or away from it rejects the surface's triangles here.
     let from_a = base - &c.triangle.a;
-    let scale = max_abs(&from_a, one.clone()) + &swept.speed;
+    let scale = max_abs(&from_a, one.clone()) + speed;
     let clear = one.clone() + T::c((opts.touch_ulps + 16.0) * T::unit_roundoff()) * &c.shape * scale;
     if let Some(n) = &c.normal {
         let d0 = dot(n, &from_a);
@@ -347,7 +352,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
     let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape;
     // Before `limit` (an earlier triangle's hit) the centre has moved at
     // most `limit |vel|`.
-    let travel = limit.map_or_else(|| swept.speed.clone(), |l| l.clone().min(one.clone()) * &swept.speed);
+    let travel = limit.map_or_else(|| speed.clone(), |l| l.clone().min(one.clone()) * speed);
     let gap_bound = (one.clone() + travel) * &reach + &slack;
     let gap_bound_sq = gap_bound.clone() * gap_bound;
     let near = reach.clone() + &slack;
@@ -401,7 +406,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
                 let approached = if overlapping {
                     approach > zero
                 } else {
-                    approach > T::c(opts.approach_ulps * T::unit_roundoff()) * &swept.speed
+                    approach > T::c(opts.approach_ulps * T::unit_roundoff()) * speed
                 };
                 if approached && wins(&zero) {
                     return Some(Hit {
@@ -480,7 +485,7 @@ pub(crate) fn sweep_robust_within<T: Real>(
         // reached before it (fuzz finding F26: a band touch after the end
         // of the sweep ruled out the vertex reached half way).
         let (t, f) = if f < lo || f > hi {
-            let magnitude = far.clone() + &swept.speed;
+            let magnitude = far.clone() + speed;
             let touch = edge_beyond_end(e, a, vel, &entry, (&t, &f), (&lo, &hi), &magnitude, opts.touch_ulps);
             let Some(touch) = touch.filter(|(t, _)| better(t, &best)) else {
                 vertex_open[if f < lo { ends[1] } else { ends[0] }] = false;
