@@ -197,12 +197,11 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///
 /// Ties: face before edges before vertices, lower feature index first.
 ///
-/// No broadphase of its own: the first rejection is the plane's (below).
-/// A caller with many triangles goes through [`crate::detect::earliest_hit`]
-/// or [`crate::detect::sweep_world`], which first reject candidates whose
-/// boxes miss the sweep's box and ball, computed once per sweep. (Built
-/// for each call here, that box cost a test 5-10% of its time, hits and
-/// near misses alike: `docs/performance.md`.)
+/// The first rejection is the candidate's box against the box the sphere
+/// sweeps, axis by axis relative to `base` ([`box_misses_sweep`]); a caller
+/// with many triangles goes through [`crate::detect::earliest_hit`] or
+/// [`crate::detect::sweep_world`], which test the boxes against a swept box
+/// and ball computed once per sweep.
 ///
 /// Inputs must be finite (this kernel does not check, to stay cheap:
 /// [`crate::detect::sweep_world`] and [`crate::respond::move_body`] do,
@@ -216,7 +215,34 @@ pub fn sweep_robust<T: Real>(
     opts: &DetectOptions,
     limit: Option<&T>,
 ) -> Option<Hit<T>> {
+    if box_misses_sweep(c, base, vel) {
+        return None;
+    }
     sweep_robust_with_speed(c, base, vel, &norm(vel), opts, limit)
+}
+
+/// Whether the candidate's box lies outside the box swept by the unit
+/// sphere from `base` by `vel` on some axis `i`, judged relative to `base`:
+/// `lo_i - base_i > max(vel_i, 0) + r_i` or
+/// `hi_i - base_i < min(vel_i, 0) - r_i` with `r_i = reach + 4 u |vel_i|`.
+/// Each side is one or two rounded operations; where they nearly agree
+/// (`|lo_i - base_i|` about `|vel_i| + 1`) their roundings add up to a few
+/// `u (|vel_i| + 1)`, which the `4 u |vel_i|` and the margin of [`reach`]
+/// cover. Cheaper than building a [`SweptBox`] for one candidate: no square
+/// root, no magnitude of the coordinates, no ball.
+#[inline]
+fn box_misses_sweep<T: Real>(c: &Candidate<T>, base: &Vec3<T>, vel: &Vec3<T>) -> bool {
+    let zero = T::zero();
+    let margin = T::c(4.0 * T::unit_roundoff());
+    // Every axis and both sides are evaluated, without a branch between
+    // them: a hit passes all six tests, and one branch is cheaper.
+    let outside = |i: usize| {
+        let v = &vel[i];
+        let r = reach::<T>() + margin.clone() * v.clone().abs();
+        (c.lo[i].clone() - &base[i] > v.clone().max(zero.clone()) + &r)
+            | (c.hi[i].clone() - &base[i] < v.clone().min(zero.clone()) - r)
+    };
+    outside(0) | outside(1) | outside(2)
 }
 
 /// The region the unit sphere swept from `base` by `vel` can touch, for the
@@ -447,7 +473,8 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
         None => wins(t),
         Some(b) => *t < b.t,
     };
-    let mut vertex_open = [true; 3];
+    // Bit `v` set: vertex `v` is still to be solved for.
+    let mut vertex_open = 0b111u8;
     for (i, e) in edges.iter().enumerate() {
         let ends = [i, (i + 1) % 3];
         // The line through the edge from its nearer end `a`: the distance
@@ -473,7 +500,7 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
         let disc = e2.clone() * (m2.clone() - det.clone() * &det);
         let entry = EdgeEntry { e2, m2, half_b: -dot(&m, &k), c, disc };
         let Some(t) = stable_entry_root(&entry.half_b, &entry.c, &entry.disc).filter(|t| better(t, &best)) else {
-            ends.iter().for_each(|&v| vertex_open[v] = false);
+            vertex_open &= !(1 << ends[0] | 1 << ends[1]);
             continue;
         };
         let f = dot(&(&(vel * t.clone()) - a), e) / &entry.e2;
@@ -488,19 +515,22 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
             let magnitude = far.clone() + speed;
             let touch = edge_beyond_end(e, a, vel, &entry, (&t, &f), (&lo, &hi), &magnitude, opts.touch_ulps);
             let Some(touch) = touch.filter(|(t, _)| better(t, &best)) else {
-                vertex_open[if f < lo { ends[1] } else { ends[0] }] = false;
+                vertex_open &= !(1 << if f < lo { ends[1] } else { ends[0] });
                 continue;
             };
             touch
         } else {
             (t, f)
         };
-        ends.iter().for_each(|&v| vertex_open[v] = false);
+        vertex_open &= !(1 << ends[0] | 1 << ends[1]);
         let centre = vel * t.clone();
         best = Some(Touch { t, point: a + e * f, centre, feature: Feature::Edge(i as u8) });
     }
     let v2 = norm_squared(vel);
-    for (i, v) in p.iter().enumerate().filter(|(i, _)| vertex_open[*i]) {
+    for (i, v) in p.iter().enumerate() {
+        if vertex_open & 1 << i == 0 {
+            continue;
+        }
         let c = norm_squared(*v) - &one;
         if !(c > zero) {
             continue;
