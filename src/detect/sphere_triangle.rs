@@ -26,8 +26,14 @@ impl<T: Real> Touch<T> {
     /// The hit record; `origin` is added to the point to return it in the
     /// caller's coordinates (the normal is computed before, where the
     /// coordinates are small).
-    fn into_hit(self, origin: Option<&Vec3<T>>, fallback: &Vec3<T>, index: u32, overlapping: bool) -> Hit<T> {
-        let normal = normalize_near_unit(&(&self.centre - &self.point)).unwrap_or_else(|| fallback.clone());
+    fn into_hit(
+        self,
+        origin: Option<&Vec3<T>>,
+        fallback: impl FnOnce() -> Vec3<T>,
+        index: u32,
+        overlapping: bool,
+    ) -> Hit<T> {
+        let normal = normalize_near_unit(&(&self.centre - &self.point)).unwrap_or_else(fallback);
         let point = match origin {
             Some(o) => self.point + o,
             None => self.point,
@@ -83,7 +89,7 @@ pub fn sweep_fauerby<T: Real>(tri: &Triangle<T>, base: &Vec3<T>, vel: &Vec3<T>, 
             let overlapping = t0 == zero;
             let centre = base + vel * t0.clone();
             let touch = Touch { t: t0, point: plane_point, centre, feature: Feature::Face };
-            return Some(touch.into_hit(None, &plane.normal, index, overlapping));
+            return Some(touch.into_hit(None, || plane.normal.clone(), index, overlapping));
         }
     }
     let velocity_sq = norm_squared(vel);
@@ -120,7 +126,7 @@ pub fn sweep_fauerby<T: Real>(tri: &Triangle<T>, base: &Vec3<T>, vel: &Vec3<T>, 
     let (point, feature) = found?;
     let centre = base + vel * t.clone();
     let overlapping = t == zero;
-    Some(Touch { t, point, centre, feature }.into_hit(None, &plane.normal, index, overlapping))
+    Some(Touch { t, point, centre, feature }.into_hit(None, || plane.normal.clone(), index, overlapping))
 }
 
 /// Fauerby's `checkPointInTriangle`: barycentric-like quantities
@@ -374,7 +380,9 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
     // Ericson's barycentric closest point drifts along a sliver): this
     // rejects most near misses before the edge and vertex quadratics.
     let far = max_abs(p[2], max_abs(p[1], max_abs(p[0], one.clone())));
-    let face_normal = normal.clone().unwrap_or_else(|| -vel.clone());
+    // The face normal, or for a degenerate triangle the direction against
+    // the motion: the fallback direction of a contact.
+    let face_normal = || normal.clone().unwrap_or_else(|| -vel.clone());
     let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape;
     // Before `limit` (an earlier triangle's hit) the centre has moved at
     // most `limit |vel|`.
@@ -409,7 +417,7 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
         }
         if closest_sq <= near_sq {
             let local = Local { p, edges, active, face: normal.as_ref(), plane_dist: &plane_dist, nearest };
-            let (dist, sep, tol) = local.separation(&closest, feature, &face_normal, opts);
+            let (dist, sep, tol) = local.separation(&closest, feature, &face_normal(), opts);
             if dist <= one.clone() + &tol {
                 // Touching: approached by more than `opts.approach_ulps`;
                 // overlapping: by any amount.
@@ -545,7 +553,7 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
             best = Some(Touch { t, point: (*v).clone(), centre, feature: Feature::Vertex(i as u8) });
         }
     }
-    Some(best?.into_hit(Some(base), &face_normal, index, false))
+    Some(best?.into_hit(Some(base), face_normal, index, false))
 }
 
 /// The entry of the unit sphere moving by `vel` into the unit cylinder
