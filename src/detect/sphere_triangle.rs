@@ -389,8 +389,6 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
     let travel = limit.map_or_else(|| speed.clone(), |l| l.clone().min(one.clone()) * speed);
     let gap_bound = (one.clone() + travel) * &reach + &slack;
     let gap_bound_sq = gap_bound.clone() * gap_bound;
-    let near = reach.clone() + &slack;
-    let near_sq = near.clone() * near;
     if clear_of_plane && limit.is_none() {
         // Not touching now, the distance serves only that rejection, and
         // with no earlier hit its bound is loose (`1 + |vel|`): the distance
@@ -415,7 +413,8 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
         if closest_sq > gap_bound_sq {
             return None;
         }
-        if closest_sq <= near_sq {
+        let near = reach.clone() + &slack;
+        if closest_sq <= near.clone() * near {
             let local = Local { p, edges, active, face: normal.as_ref(), plane_dist: &plane_dist, nearest };
             let (dist, sep, tol) = local.separation(&closest, feature, &face_normal(), opts);
             if dist <= one.clone() + &tol {
@@ -433,7 +432,7 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
                 let approach = match feature {
                     Feature::Edge(i) if overlapping => {
                         let e = &edges[usize::from(i)];
-                        -dot(&sep, &(vel - e * (dot(vel, e) / norm_squared(e))))
+                        -dot(&sep, &(vel - e * (dot(vel, e) / &c.edge_sq[usize::from(i)])))
                     }
                     _ => -dot(&sep, vel),
                 };
