@@ -178,6 +178,7 @@ impl<T: Real> Candidate<T> {
 
     /// [`Candidate::new`] given the triangle's box `[lo, hi]` (as
     /// [`Triangle::bounds`] computes it), when the caller has it already.
+    #[inline(always)]
     fn with_bounds(index: u32, triangle: Triangle<T>, active: ActiveFeatures, lo: Vec3<T>, hi: Vec3<T>) -> Self {
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
         let edges = [b - a, c - b, a - c];
