@@ -474,19 +474,22 @@ struct Nearest<T: Real> {
 fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOptions) -> Option<Nearest<T>> {
     let one = T::one();
     let reach = one.clone() + T::c(opts.max_padding);
+    let reach_sq = reach.clone() * &reach;
     let mut nearest: Option<Nearest<T>> = None;
     frame.resting.clear();
     for (k, c) in frame.hood.triangles.iter().enumerate() {
-        if c.box_distance_sq(p) >= reach.clone() * &reach
+        if c.box_distance_sq(p) >= reach_sq
             || c.normal.as_ref().is_some_and(|n| dot(n, &(p - &c.triangle.a)).abs() >= reach)
         {
             continue;
         }
         let (point, _) = closest_point_on_triangle(p, &c.triangle);
-        let dist = norm(&(p - &point));
-        if !(dist < reach) {
+        // Squared, so that the square root is taken only within reach.
+        let dist_sq = norm_squared(&(p - &point));
+        if !(dist_sq < reach_sq) {
             continue;
         }
+        let dist = dist_sq.sqrt();
         let pad = padding(frame.start_magnitude, p, &Vec3::zeros(), c, opts);
         if dist <= one.clone() + T::c(2.0) * &pad {
             frame.resting.push(k);
