@@ -124,6 +124,7 @@ impl Triangle<f64> {
 /// gets a finite answer, never NaN: the vertex for a side of zero length,
 /// the nearest point of the three sides for collinear vertices.
 #[must_use]
+#[inline(always)]
 pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {
     let zero = T::zero();
     let ab = &tri.b - &tri.a;
