@@ -291,10 +291,10 @@ impl<T: Real> SweptBox<T> {
     /// ball around the sweep.
     #[inline]
     pub(crate) fn misses(&self, c: &Candidate<T>) -> bool {
-        if (0..3).any(|i| c.lo[i] > self.hi[i] || c.hi[i] < self.lo[i]) {
-            return true;
-        }
-        c.box_distance_sq(&self.mid) > self.ball_sq
+        // Every test is evaluated, without a branch between them (one
+        // branch, taken for most candidates, predicts better than seven).
+        let outside = |i: usize| (c.lo[i] > self.hi[i]) | (c.hi[i] < self.lo[i]);
+        outside(0) | outside(1) | outside(2) | (c.box_distance_sq(&self.mid) > self.ball_sq)
     }
 }
 
