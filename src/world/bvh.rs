@@ -88,6 +88,7 @@ struct Child {
 impl Child {
     /// The box rounded outward to `f32` (infinities where it exceeds the
     /// `f32` range), with the given reference.
+    #[inline]
     fn new(bounds: &Aabb, index: u32, count: u32) -> Self {
         let down = |x: f64| {
             let f = x as f32;
