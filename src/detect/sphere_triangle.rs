@@ -1010,6 +1010,7 @@ pub struct Proximity<T: Real> {
 /// `t = 0` (relative to `base`, per feature): `None` when `c` is one-sided
 /// (`opts.two_sided` false) and `base` lies behind it.
 #[must_use]
+#[inline(always)]
 pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions) -> Option<Proximity<T>> {
     let zero = T::zero();
     let rel = c.triangle.relative_to(base);
