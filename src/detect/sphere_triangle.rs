@@ -204,8 +204,8 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 /// Ties: face before edges before vertices, lower feature index first.
 ///
 /// The first rejection is the candidate's box against the box the sphere
-/// sweeps, axis by axis relative to `base` ([`box_misses_sweep`]); a caller
-/// with many triangles goes through [`crate::detect::earliest_hit`] or
+/// sweeps, axis by axis relative to `base`; a caller with many triangles
+/// goes through [`crate::detect::earliest_hit`] or
 /// [`crate::detect::sweep_world`], which test the boxes against a swept box
 /// and ball computed once per sweep.
 ///
@@ -1008,7 +1008,8 @@ pub struct Proximity<T: Real> {
 /// The distance and separating direction between the unit sphere at `base`
 /// and candidate `c`, computed as [`sweep_robust`] decides a contact at
 /// `t = 0` (relative to `base`, per feature): `None` when `c` is one-sided
-/// (`opts.two_sided` false) and `base` lies behind it.
+/// (`opts.two_sided` false) and `base` lies behind it. Always inlined, as
+/// [`closest_point_on_triangle`], for the same stall on its result.
 #[must_use]
 #[inline(always)]
 pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions) -> Option<Proximity<T>> {

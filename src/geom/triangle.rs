@@ -123,6 +123,9 @@ impl Triangle<f64> {
 /// or all three collinear: a tiny triangle far from the origin in `f32`)
 /// gets a finite answer, never NaN: the vertex for a side of zero length,
 /// the nearest point of the three sides for collinear vertices.
+///
+/// Always inlined: returned through the stack, the point stalled every
+/// caller on a store-forwarding failure.
 #[must_use]
 #[inline(always)]
 pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {

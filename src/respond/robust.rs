@@ -484,7 +484,9 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
             continue;
         }
         let (point, _) = closest_point_on_triangle(p, &c.triangle);
-        // Squared, so that the square root is taken only within reach.
+        // Squared, so that the square root is taken only within reach (the
+        // cutoff moves by the rounding of `reach^2`, far inside the
+        // `max_padding` of room it keeps beyond any resting contact).
         let dist_sq = norm_squared(&(p - &point));
         if !(dist_sq < reach_sq) {
             continue;
