@@ -310,7 +310,7 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
 ) -> Option<Hit<T>> {
     let zero = T::zero();
     let one = T::one();
-    let (index, active) = (c.index, c.active);
+    let index = c.index;
     // A hit must come before `limit` (an earlier triangle's hit) or, with
     // none yet, within the frame.
     let wins = |t: &T| limit.map_or(*t <= one, |l| t < l);
@@ -415,7 +415,7 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
         }
         let near = reach.clone() + &slack;
         if closest_sq <= near.clone() * near {
-            let local = Local { p, edges, active, face: normal.as_ref(), plane_dist: &plane_dist, nearest };
+            let local = Local { p, c, face: normal.as_ref(), plane_dist: &plane_dist, nearest };
             let (dist, sep, tol) = local.separation(&closest, feature, &face_normal(), opts);
             if dist <= one.clone() + &tol {
                 // Touching: approached by more than `opts.approach_ulps`;
@@ -928,10 +928,9 @@ fn face_window<T: Real>(
 struct Local<'a, T: Real> {
     /// The vertices minus the centre.
     p: [&'a Vec3<T>; 3],
-    /// The candidate's edges (from the vertices as given).
-    edges: &'a [Vec3<T>; 3],
-    /// Its active edges and vertices.
-    active: ActiveFeatures,
+    /// The candidate (its edges, their squared lengths, its active
+    /// features).
+    c: &'a Candidate<T>,
     /// The unit normal turned towards the centre (`None`: degenerate).
     face: Option<&'a Vec3<T>>,
     /// The centre's distance to the plane, from the nearest vertex.
@@ -960,9 +959,9 @@ impl<T: Real> Local<'_, T> {
         let (dist, sep, local) = match (feature, self.face) {
             (Feature::Face, Some(n)) => (self.plane_dist.clone(), n.clone(), p[self.nearest]),
             (Feature::Edge(i), _) => {
-                let (a, b, e) = (p[i as usize], p[(i as usize + 1) % 3], &self.edges[i as usize]);
+                let (a, b, e) = (p[i as usize], p[(i as usize + 1) % 3], &self.c.edges[i as usize]);
                 let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, e.clone()) } else { (b, -e.clone()) };
-                let perp = -from - &e * (dot(&-from, &e) / norm_squared(&e));
+                let perp = -from - &e * (dot(&-from, &e) / &self.c.edge_sq[i as usize]);
                 let d = norm(&perp);
                 let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
                 (d, sep, from)
@@ -982,7 +981,7 @@ impl<T: Real> Local<'_, T> {
         // no contact direction at all: a push away from the edge would be
         // judged to approach the face by the rounding of its direction.
         let over_face = dot(&sep, face_normal) > T::c(0.5);
-        let sep = if is_active(feature, self.active) || !over_face { sep } else { face_normal.clone() };
+        let sep = if is_active(feature, self.c.active) || !over_face { sep } else { face_normal.clone() };
         let tol = T::c(opts.touch_ulps * T::unit_roundoff()) * max_abs(local, T::one());
         (dist, sep, tol)
     }
@@ -1031,7 +1030,7 @@ pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions
     }
     let (closest, feature) = closest_point_on_triangle(&Vec3::zeros(), &rel);
     let face_normal = face.clone().unwrap_or_else(|| normalize(&-closest.clone()).unwrap_or_else(Vec3::zeros));
-    let local = Local { p, edges: &c.edges, active: c.active, face: face.as_ref(), plane_dist: &plane_dist, nearest };
+    let local = Local { p, c, face: face.as_ref(), plane_dist: &plane_dist, nearest };
     let (dist, normal, tol) = local.separation(&closest, feature, &face_normal, opts);
     Some(Proximity { dist, normal, point: closest + base, feature, tol })
 }
