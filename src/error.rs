@@ -1,5 +1,7 @@
 //! The crate's one error type.
 
+use crate::respond::MAX_ROUNDS;
+use std::fmt;
 use std::path::PathBuf;
 
 /// Everything that can go wrong with input given to this crate.
@@ -50,7 +52,7 @@ pub enum Error {
         first: Box<Error>,
     },
     /// A radius that is zero, negative, NaN or infinite.
-    #[error("radius along {axis} must be positive and finite, got {value}")]
+    #[error("radius along {axis} must be positive and finite, got {}", Num(*.value))]
     InvalidRadius {
         /// `x`, `y` or `z`.
         axis: char,
@@ -100,3 +102,57 @@ pub enum Error {
 
 /// Shorthand for `Result<T, sweepslide::Error>`.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// The error for option `what` (kept out of line: a valid option costs a
+/// comparison).
+#[cold]
+#[inline(never)]
+pub(crate) fn out_of_range(what: &str, message: String) -> Error {
+    Error::InvalidArgument { what: what.into(), message }
+}
+
+/// `Ok` for a finite `x >= 0`, else [`Error::InvalidArgument`] naming `what`.
+#[inline(always)]
+pub(crate) fn not_negative(what: &str, x: f64) -> Result<(), Error> {
+    if (0.0..=f64::MAX).contains(&x) {
+        Ok(())
+    } else {
+        Err(out_of_range(what, format!("must be finite and not negative, got {}", Num(x))))
+    }
+}
+
+/// `Ok` for a finite `x > 0`, else [`Error::InvalidArgument`] naming `what`.
+#[inline(always)]
+pub(crate) fn positive(what: &str, x: f64) -> Result<(), Error> {
+    if x > 0.0 && x <= f64::MAX {
+        Ok(())
+    } else {
+        Err(out_of_range(what, format!("must be finite and positive, got {}", Num(x))))
+    }
+}
+
+/// `Ok` for `least <= n <= MAX_ROUNDS`, else [`Error::InvalidArgument`]
+/// naming `what`.
+#[inline(always)]
+pub(crate) fn count(what: &str, n: u32, least: u32) -> Result<(), Error> {
+    if (least..=MAX_ROUNDS).contains(&n) {
+        Ok(())
+    } else {
+        Err(out_of_range(what, format!("must lie in {least}..={MAX_ROUNDS}, got {n}")))
+    }
+}
+
+/// A number as a message shows it: plainly between `1e-4` and `1e15`,
+/// in scientific notation beyond (`1e-320` rather than its 320 digits).
+pub(crate) struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
+}

@@ -373,7 +373,7 @@ fn obj_face_with_fewer_than_three_vertices() {
 #[test]
 fn obj_index_zero() {
     obj_error(&format!("{V4}f 1 2 3\nf 0 1 2\n"), 6, "index 0");
-    obj_error(&format!("{V4}f 1/1 0/1 2/1\n"), 5, "index 0");
+    obj_error(&format!("{V4}vt 0 0\nf 1/1 0/1 2/1\n"), 6, "index 0");
 }
 
 #[test]
@@ -394,6 +394,21 @@ fn obj_non_numeric_index() {
     obj_error(&format!("{V4}f 1 two 3\n"), 5, "not a vertex index");
     obj_error(&format!("{V4}f 1 2 /3\n"), 5, "not a vertex index");
     obj_error(&format!("{V4}f 1 2 3.0\n"), 5, "not a vertex index");
+}
+
+/// A face corner's texture and normal indices are checked like its
+/// vertex's, against the `vt` and `vn` statements read so far.
+#[test]
+fn obj_texture_and_normal_indices_are_checked() {
+    let vt_vn = "vt 0 0\nvt 1 0\nvn 0 0 1\n";
+    obj_error(&format!("{V4}{vt_vn}f 1/2/1 2/x/1 3//1\n"), 8, "`x` is not a texture coordinate index");
+    obj_error(&format!("{V4}{vt_vn}f 1/3 2/1 3/1\n"), 8, "texture coordinate index 3 is out of range");
+    obj_error(&format!("{V4}{vt_vn}f 1//2 2//1 3//1\n"), 8, "normal index 2 is out of range");
+    obj_error(&format!("{V4}{vt_vn}f 1/0/1 2/1/1 3/1/1\n"), 8, "texture coordinate index 0");
+    obj_error(&format!("{V4}{vt_vn}f 1/1/1/1 2 3\n"), 8, "not a face corner");
+    // Valid references, negative ones included, are read (and not used).
+    let mesh = TriangleMesh::from_obj_str(&format!("{V4}{vt_vn}f 1/1/1 2/-1/-1 3//1 4/2\n"), Path::new("x.obj"));
+    assert_eq!(mesh.map(|m| m.len()), Ok(2));
 }
 
 #[test]
@@ -551,6 +566,17 @@ fn malformed_case_files_are_invalid_arguments_with_the_reason() {
                 "frames": [{{"velocity": [0,-1,0], "gravity": null}}]}}}}"#
             ),
             "unknown key `respnse`",
+        ),
+        (
+            "only-degenerate",
+            r#"{"triangles": [[[0,0,0],[1,0,0],[2,0,0]]], "radii": [1,1,1], "start": [0,2,0],
+                "frames": [{"velocity": [0,-1,0]}]}"#,
+            "degenerate",
+        ),
+        (
+            "no-triangle",
+            r#"{"triangles": [], "radii": [1,1,1], "start": [0,2,0], "frames": [{"velocity": [0,-1,0]}]}"#,
+            "no triangle",
         ),
     ];
     for (name, text, reason) in cases {
@@ -737,4 +763,151 @@ fn world_refuses_a_used_vertex_beyond_the_backends_range_and_ignores_an_unused_o
         other => panic!("{:?}", other.map(|w| w.mesh().len())),
     }
     assert!(World::<f64>::new(used).is_ok());
+}
+
+// ---------------------------------------------------------------------------
+// Triangles too large for the precision, and sweep_world's options
+// ---------------------------------------------------------------------------
+
+/// A floor `[-h, h]^2` in the plane y = 0, as two triangles.
+fn floor(h: f64) -> std::sync::Arc<TriangleMesh> {
+    let v = vec![[-h, 0.0, -h], [-h, 0.0, h], [h, 0.0, h], [h, 0.0, -h]];
+    std::sync::Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [0, 2, 3]]).unwrap())
+}
+
+/// One frame of a unit sphere 2 above the floor moving down by 2.5: it
+/// lands (returns its height) or the move is refused.
+fn fall_onto_floor<T: sweepslide::Real>(h: f64, response: sweepslide::respond::Response) -> Result<f64, Error> {
+    use sweepslide::respond::{MoveOptions, move_body};
+    use sweepslide::world::World;
+    let world = World::<T>::new(floor(h))?;
+    let body = Ellipsoid::<T>::sphere(1.0)?;
+    let m = move_body(&world, &body, &vec3(5.0, 2.0, -5.0), &vec3(0.0, -2.5, 0.0), None, &MoveOptions::new(response))?;
+    Ok(m.position[1].to_f64())
+}
+
+#[test]
+fn a_triangle_whose_squared_sides_overflow_is_refused_not_passed_through() {
+    use sweepslide::respond::Response;
+    // Its sides' squares overflow `f32` (2e19 radii): every test would miss
+    // it, and the body fell through (0.5 deep) before this was an error.
+    for response in [Response::Robust, Response::Fauerby, Response::Linahan] {
+        match fall_onto_floor::<f32>(1e19, response) {
+            Err(Error::InvalidArgument { what, message }) => {
+                assert!(what == "triangle 0" || what == "triangle 1", "{what}");
+                assert!(message.contains("too long for this precision"), "{message}");
+            }
+            other => panic!("{response:?}: expected InvalidArgument, got {other:?}"),
+        }
+    }
+    assert!(matches!(fall_onto_floor::<f64>(1e160, Response::Robust), Err(Error::InvalidArgument { .. })));
+    // Below the limit the move runs and the body stays out of the floor,
+    // in `f32` and in `f64`. (So large a triangle is not resolved to the
+    // padding: its vertices relative to the body are rounded by more than
+    // a radius, and the body need not come down onto it; see
+    // docs/algorithms.md.)
+    for (y, precision) in [
+        (fall_onto_floor::<f32>(1e18, Response::Robust), "f32"),
+        (fall_onto_floor::<f64>(1e19, Response::Robust), "f64"),
+    ] {
+        let y = y.unwrap();
+        assert!(y >= 1.0, "{precision}: {y}");
+    }
+    // Sizes the precision resolves: the body lands within twice the largest
+    // padding.
+    for (y, precision) in
+        [(fall_onto_floor::<f32>(1e3, Response::Robust), "f32"), (fall_onto_floor::<f64>(1e8, Response::Robust), "f64")]
+    {
+        let y = y.unwrap();
+        assert!((1.0..=1.02).contains(&y), "{precision}: {y}");
+    }
+}
+
+#[test]
+fn sweep_world_checks_its_options_and_the_triangles_size() {
+    use sweepslide::detect::{DetectOptions, Detection, sweep_world};
+    use sweepslide::world::World;
+    let world = World::<f64>::new(floor(50.0)).unwrap();
+    let body = Ellipsoid::<f64>::sphere(1.0).unwrap();
+    let (p, v) = (vec3(0.0, 3.0, 0.0), vec3(0.0, -3.0, 0.0));
+    let hit = sweep_world(&world, &body, &p, &v, Detection::Robust, &DetectOptions::default()).unwrap();
+    assert!(hit.is_some_and(|h| (h.t - 2.0 / 3.0).abs() < 1e-12));
+    for (touch, approach, field) in [
+        (-1e300, 0.0, "detect.touch_ulps"),
+        (f64::NAN, 0.0, "detect.touch_ulps"),
+        (16.0, f64::NAN, "detect.approach_ulps"),
+        (16.0, f64::INFINITY, "detect.approach_ulps"),
+    ] {
+        let opts = DetectOptions { touch_ulps: touch, approach_ulps: approach, ..DetectOptions::default() };
+        match sweep_world(&world, &body, &p, &v, Detection::Robust, &opts) {
+            Err(Error::InvalidArgument { what, .. }) => assert_eq!(what, field),
+            other => panic!("{touch} {approach}: expected InvalidArgument, got {other:?}"),
+        }
+    }
+    let world = World::<f32>::new(floor(1e19)).unwrap();
+    let body = Ellipsoid::<f32>::sphere(1.0).unwrap();
+    let (p, v) = (vec3(0.0, 3.0, 0.0), vec3(0.0, -3.0, 0.0));
+    assert!(matches!(
+        sweep_world(&world, &body, &p, &v, Detection::Robust, &DetectOptions::default()),
+        Err(Error::InvalidArgument { what, .. }) if what.starts_with("triangle ")
+    ));
+}
+
+#[test]
+fn tiny_and_huge_values_in_messages_are_in_scientific_notation() {
+    let e = Ellipsoid::<f64>::sphere(-1e-320).unwrap_err().to_string();
+    assert!(e.ends_with("got -1e-320"), "{e}");
+    let e = Ellipsoid::<f64>::sphere(-2.5).unwrap_err().to_string();
+    assert!(e.ends_with("got -2.5"), "{e}");
+    let opts = sweepslide::detect::DetectOptions { touch_ulps: -1e300, ..Default::default() };
+    let e = opts.validate().unwrap_err().to_string();
+    assert!(e.ends_with("got -1e300"), "{e}");
+}
+
+#[test]
+fn internal_edge_angle_is_checked_and_used() {
+    // Two triangles folded by 10 degrees along their shared edge (0 -> 1,
+    // the z axis), one way and the other.
+    let (s, c) = 10f64.to_radians().sin_cos();
+    let ridge = |fold: f64| {
+        let v = vec![[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [c, fold * s, 0.0]];
+        TriangleMesh::new(v, vec![[0, 1, 2], [1, 0, 3]]).unwrap()
+    };
+    // The shared edge is edge 0 of triangle 0. Whichever fold is convex,
+    // a threshold above its 10 degrees makes it internal and one below
+    // leaves it active; the concave fold is internal at any threshold.
+    let active = |fold: f64, degrees: f64| ridge(fold).with_internal_edge_angle(degrees).unwrap().active(0).edge(0);
+    let convex = if active(1.0, 5.0) { 1.0 } else { -1.0 };
+    assert!(active(convex, 5.0) && active(convex, 0.0));
+    assert!(!active(convex, 15.0) && !active(convex, 180.0));
+    assert!(!active(-convex, 0.0) && !active(-convex, 5.0));
+    for bad in [f64::NAN, -1.0, 180.5, f64::INFINITY] {
+        match ridge(1.0).with_internal_edge_angle(bad) {
+            Err(Error::InvalidArgument { what, .. }) => assert_eq!(what, "internal edge angle"),
+            other => panic!("{bad}: expected InvalidArgument, got {:?}", other.map(|m| m.len())),
+        }
+    }
+}
+
+#[cfg(feature = "lab")]
+#[test]
+fn a_mesh_too_large_or_too_small_for_the_labs_f32_scene_values_says_so() {
+    use sweepslide::lab::Scene;
+    let dir = std::env::temp_dir().join(format!("sweepslide-scale-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, h) in [("huge", 1e170), ("tiny", 1e-300)] {
+        let path = dir.join(format!("{name}.obj"));
+        std::fs::write(&path, format!("v 0 0 0\nv {h} 0 0\nv 0 0 {h}\nf 1 2 3\n")).unwrap();
+        match Scene::from_obj(&path) {
+            Err(Error::InvalidArgument { what, message }) => {
+                assert!(what.ends_with(&format!("{name}.obj")), "{what}");
+                assert!(message.contains("beyond the `f32` numbers"), "{message}");
+            }
+            other => panic!("{name}: expected InvalidArgument, got {:?}", other.map(|s| s.name)),
+        }
+    }
+    let path = dir.join("plain.obj");
+    std::fs::write(&path, "v 0 0 0\nv 2 0 0\nv 0 0 2\nf 1 2 3\n").unwrap();
+    let scene = Scene::from_obj(&path).unwrap();
+    assert!((scene.radii[0] - 0.02 * 8f64.sqrt()).abs() < 1e-12);
 }

@@ -219,6 +219,18 @@ fn run_json_has_the_contract_fields_for_every_scene_response_and_hardware_precis
 }
 
 #[test]
+fn a_negative_radius_is_refused_with_its_reason_in_both_forms() {
+    for args in [vec!["--radius", "-1"], vec!["--radius=-1"], vec!["--radii", "-1,1,1"], vec!["--radii=-1,1,1"]] {
+        let mut all = vec!["run", "--scene", "floor", "--frames", "2"];
+        all.extend(&args);
+        let out = sweepslide(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("must be positive"), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
 fn negative_numbers_work_in_both_forms() {
     for args in [["--velocity", "-0.1,0,0"], ["--velocity=-0.1,0,0", "--seed=2"]] {
         let mut all = vec!["run", "--scene", "floor", "--frames", "5", "--json", "--start", "0,1.5,0"];
@@ -263,6 +275,11 @@ fn trace_csv_has_one_row_per_frame() {
     let dir = std::env::temp_dir().join(format!("sweepslide-trace-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("t.csv");
+    // A run that fails leaves no empty trace behind.
+    let args = ["run", "--scene", "floor", "--velocity", "0,0,0", "--gravity", "0,0,0", "--trace"];
+    let out = sweepslide(&[&args[..], &[path.to_str().unwrap()]].concat());
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(!path.exists());
     let out = sweepslide(&["run", "--scene", "corner", "--frames", "12", "--trace", path.to_str().unwrap()]);
     assert!(out.status.success());
     let text = std::fs::read_to_string(&path).unwrap();

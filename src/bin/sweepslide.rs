@@ -127,10 +127,10 @@ struct RunArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
     gravity: Option<[f64; 3]>,
     /// Sphere radius.
-    #[arg(long, conflicts_with = "radii", value_parser = parse_positive)]
+    #[arg(long, conflicts_with = "radii", allow_hyphen_values = true, value_parser = parse_positive)]
     radius: Option<f64>,
     /// Ellipsoid radii X,Y,Z.
-    #[arg(long, value_parser = parse_vec3)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
     radii: Option<[f64; 3]>,
     /// Move the whole scene (geometry and start) by X,Y,Z.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
@@ -294,7 +294,12 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         precision: args.precision,
         seed: args.seed,
     };
-    let out = run(&cfg)?;
+    let out = run(&cfg).inspect_err(|_| {
+        // The trace file created above would be left empty.
+        if let Some(path) = &args.trace {
+            let _ = std::fs::remove_file(path);
+        }
+    })?;
     if let Some(path) = &args.trace {
         write_trace(path, &out)?;
     }

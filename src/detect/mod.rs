@@ -14,6 +14,7 @@ pub use sphere_triangle::{Proximity, fauerby_point_in_triangle, proximity, sweep
 
 use sphere_triangle::{SweptBox, sweep_robust_with_speed};
 
+use crate::error::not_negative;
 use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, cross, is_finite, norm, norm_squared, normalize};
 use crate::world::{ActiveFeatures, World};
 use crate::{Error, Real};
@@ -81,6 +82,19 @@ pub struct DetectOptions {
     /// push along a wall the body touches is not stopped by the rounding of
     /// that wall's direction.
     pub approach_ulps: f64,
+}
+
+impl DetectOptions {
+    /// Checks every field against its documented range ([`sweep_world`]
+    /// and [`crate::respond::move_body`] do this first): `touch_ulps` and
+    /// `approach_ulps` finite and not negative.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the first field out of range.
+    pub fn validate(&self) -> Result<(), Error> {
+        not_negative("detect.touch_ulps", self.touch_ulps)?;
+        not_negative("detect.approach_ulps", self.approach_ulps)
+    }
 }
 
 impl Default for DetectOptions {
@@ -312,7 +326,14 @@ impl<T: Real> Neighbourhood<T> {
     /// to `origin`), far below the [`REACH_MARGIN`] that every reach carries
     /// beyond the unit radius; the world box and ball handed to the BVH are
     /// widened for the conversion to `f64` by [`World::each_candidate`].
-    pub fn gather(&mut self, world: &World<T>, body: &Ellipsoid<T>, reach: &Reach<T>) {
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming a gathered triangle whose sides,
+    /// measured in the body's radii, are too long for `T`: their squares
+    /// overflow (beyond about `1.8e19` radii in `f32`, `1.3e154` in
+    /// `f64`), so no distance to the triangle could be computed and every
+    /// test would miss it.
+    pub fn gather(&mut self, world: &World<T>, body: &Ellipsoid<T>, reach: &Reach<T>) -> Result<(), Error> {
         let origin = &self.origin;
         let to_e = |v: &Vec3<T>| body.to_espace(&(v - origin));
         let centre = to_e(&reach.centre);
@@ -336,6 +357,17 @@ impl<T: Real> Neighbourhood<T> {
             if box_distance_sq(&lo, &hi, &centre) <= radius_sq {
                 self.triangles.push(Candidate::with_bounds(t, triangle, world.mesh().active(t), lo, hi));
             }
+        }
+        // A finite shape factor implies finite sides: only a triangle
+        // without one (degenerate or overflowing) is looked at further.
+        match self.triangles.iter().find(|c| !(c.shape.is_finite() || c.edge_sq.iter().all(Real::is_finite))) {
+            None => Ok(()),
+            Some(c) => Err(Error::InvalidArgument {
+                what: format!("triangle {}", c.index),
+                message: "measured in the body's radii, its sides are too long for this precision (their squares \
+                          overflow): split it into smaller triangles, or use a wider precision"
+                    .into(),
+            }),
         }
     }
 
@@ -405,7 +437,12 @@ fn box_distance_sq<T: Real>(lo: &Vec3<T>, hi: &Vec3<T>, p: &Vec3<T>) -> T {
 /// mapped back), `t` the fraction of `velocity`.
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite position or velocity.
+/// [`Error::InvalidArgument`] for options out of range
+/// ([`DetectOptions::validate`]); [`Error::NonFinite`] for a non-finite
+/// position or velocity; [`Error::InvalidArgument`] if, measured in the
+/// body's radii, the position or the velocity is not representable in `T`
+/// ([`check_in_radii`]), or a triangle within reach is too large
+/// ([`Neighbourhood::gather`]).
 pub fn sweep_world<T: Real>(
     world: &World<T>,
     body: &Ellipsoid<T>,
@@ -414,6 +451,7 @@ pub fn sweep_world<T: Real>(
     detection: Detection,
     opts: &DetectOptions,
 ) -> Result<Option<Hit<T>>, Error> {
+    opts.validate()?;
     check_finite("position", position)?;
     check_finite("velocity", velocity)?;
     let origin = match detection {
@@ -421,8 +459,9 @@ pub fn sweep_world<T: Real>(
         Detection::Fauerby => Vec3::zeros(),
     };
     let reach = Reach::of_sweep(body, position, velocity);
+    check_in_radii(espace_magnitude(body, position), &reach)?;
     let mut hood = Neighbourhood::new(origin.clone());
-    hood.gather(world, body, &reach);
+    hood.gather(world, body, &reach)?;
     let base = body.to_espace(&(position - &origin));
     let vel = body.to_espace(velocity);
     Ok(hood.earliest_hit(detection, &base, &vel, opts).map(|h| Hit {
@@ -430,6 +469,34 @@ pub fn sweep_world<T: Real>(
         normal: normalize(&Vec3::from_fn(|i, _| h.normal[i].clone() / &body.radii()[i])).unwrap_or(h.normal),
         ..h
     }))
+}
+
+/// The largest absolute eSpace coordinate of world point `p`, in `f64`.
+#[must_use]
+pub fn espace_magnitude<T: Real>(body: &Ellipsoid<T>, p: &Vec3<T>) -> f64 {
+    body.to_espace(p).iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
+}
+
+/// [`Error::InvalidArgument`] unless, measured in the body's radii, the
+/// position (`position_magnitude`, see [`espace_magnitude`]) and the
+/// length of the motion (in `reach`'s radius) are representable in `T`:
+/// beyond, a length squared is infinite and no response can work (the
+/// robust one would stop, the faithful ones give NaN).
+///
+/// # Errors
+/// As described.
+pub fn check_in_radii<T: Real>(position_magnitude: f64, reach: &Reach<T>) -> Result<(), Error> {
+    if reach.radius.is_finite() && position_magnitude.is_finite() {
+        return Ok(());
+    }
+    Err(Error::InvalidArgument {
+        what: "move".into(),
+        message: format!(
+            "measured in the body's radii, the displacement ({:e}) or the position ({position_magnitude:e}) \
+             overflows this precision: move in smaller steps or use a wider precision",
+            (reach.radius.clone() - T::c(REACH_MARGIN)).to_f64(),
+        ),
+    })
 }
 
 /// [`Error::NonFinite`] if a coordinate of `v` is NaN or infinite.

@@ -467,7 +467,28 @@ impl Scene {
     pub fn from_obj(path: &Path) -> Result<Self, Error> {
         let mesh = TriangleMesh::from_obj_file(path)?;
         let b = *mesh.bounds();
-        let diag = (b.max - b.min).norm();
+        // Scaled, so that the squares do not overflow for coordinates
+        // beyond 1e154 (the box's extent itself is finite for any valid mesh
+        // within half the `f64` range).
+        let extent = b.max - b.min;
+        let largest = extent.amax();
+        let diag = if largest > 0.0 { largest * (extent / largest).norm() } else { 0.0 };
+        // The lab's inputs are `f32` numbers (every precision runs the same
+        // ones): the defaults scaled from the diagonal must be too.
+        let in_f32 = |x: f64| {
+            let f = x as f32;
+            f.is_finite() && (f != 0.0 || x == 0.0)
+        };
+        if ![0.02 * diag, 0.0004 * diag, b.max.y + 0.04 * diag].into_iter().all(in_f32) {
+            return Err(Error::InvalidArgument {
+                what: path.display().to_string(),
+                message: format!(
+                    "the lab's default scene for this mesh (a sphere of 2% of its bounding box's diagonal, {}) \
+                     needs values beyond the `f32` numbers that lab scenes are made of",
+                    crate::error::Num(diag)
+                ),
+            });
+        }
         let r = 0.02 * diag;
         let centre = b.centre();
         let name = path.file_stem().map_or_else(|| path.display().to_string(), |s| s.to_string_lossy().into_owned());
@@ -498,7 +519,8 @@ impl Scene {
     /// [`Error::Io`] if the file cannot be read; [`Error::InvalidArgument`]
     /// for malformed JSON (with its line and column), an unknown key (a
     /// misspelt `gravity` would otherwise run without gravity), no frame, or
-    /// gravity that changes between frames; the mesh's errors.
+    /// gravity that changes between frames, or a mesh error (no valid
+    /// triangle), naming the file.
     pub fn from_case_file(path: &Path) -> Result<Self, Error> {
         #[derive(serde::Deserialize)]
         #[serde(deny_unknown_fields)]
@@ -535,7 +557,7 @@ impl Scene {
         }
         let vertices: Vec<[f64; 3]> = case.triangles.iter().flatten().copied().collect();
         let indices = (0..case.triangles.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
-        let mesh = TriangleMesh::new_skipping_invalid(vertices, indices)?;
+        let mesh = TriangleMesh::new_skipping_invalid(vertices, indices).map_err(|e| bad(e.to_string()))?;
         let name = path.file_stem().map_or_else(|| path.display().to_string(), |s| s.to_string_lossy().into_owned());
         let velocities: Vec<[f64; 3]> = case.frames.iter().map(|f| f.velocity).collect();
         let motion = if velocities.iter().all(|v| *v == velocities[0]) {

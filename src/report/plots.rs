@@ -71,6 +71,13 @@ fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_
         let (cx, cy, half) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0, ((x1 - x0).max(y1 - y0)) / 2.0);
         (x0, x1, y0, y1) = (cx - half * 1.4, cx + half * 1.4, cy - half, cy + half);
     }
+    // Ranges whose ends or widths overflow (positions near `f64::MAX` in a
+    // hand-edited `runs.json`) would send the axis's tick search into an
+    // endless loop.
+    let drawable = [x0, x1, y0, y1, x1 - x0, y1 - y0].iter().all(|v| v.abs() < PLOT_LIMIT) && x1 > x0 && y1 > y0;
+    if !drawable {
+        return failed_svg(&format!("coordinates beyond {PLOT_LIMIT:e} cannot be plotted"));
+    }
     {
         let root = SVGBackend::with_string(&mut svg, (640, 420)).into_drawing_area();
         let drawn: Result<(), Box<dyn std::error::Error>> = (|| {
@@ -95,13 +102,21 @@ fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_
             Ok(())
         })();
         if let Err(e) = drawn {
-            return format!(
-                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"40\"><text x=\"10\" y=\"25\">plot failed: {}</text></svg>",
-                html_escape(&e.to_string())
-            );
+            return failed_svg(&e.to_string());
         }
     }
     svg
+}
+
+/// The largest magnitude of an axis's ends and width that a plot accepts.
+const PLOT_LIMIT: f64 = 1e300;
+
+/// A one-line SVG saying why a plot could not be drawn.
+fn failed_svg(why: &str) -> String {
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"40\"><text x=\"10\" y=\"25\">plot failed: {}</text></svg>",
+        html_escape(why)
+    )
 }
 
 fn draw_series<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate<From = (f64, f64)>>(
@@ -351,4 +366,29 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
         });
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Series, line_chart};
+    use plotters::style::RGBColor;
+
+    fn chart(points: Vec<(f64, f64)>, equal: bool) -> String {
+        let series = [Series { label: "robust f32".into(), colour: RGBColor(0, 0, 0), points }];
+        line_chart("t", "x", "y", &series, false, equal)
+    }
+
+    #[test]
+    fn coordinates_near_the_largest_float_give_a_message_not_an_endless_loop() {
+        // Before the range check, the equal-axes trajectory plot of these
+        // points never returned (plotters' tick search on an infinite range).
+        for points in [vec![(1e308, 0.0), (1e308, 1e308)], vec![(-1.7e308, 0.0), (1.7e308, 1.0)]] {
+            for equal in [true, false] {
+                let svg = chart(points.clone(), equal);
+                assert!(svg.contains("plot failed: coordinates beyond 1e300"), "{svg}");
+            }
+        }
+        let svg = chart(vec![(0.0, 0.0), (1.0, 2.0), (2.0, 1.0)], true);
+        assert!(!svg.contains("plot failed") && svg.contains("<polyline"), "{}", &svg[..svg.len().min(400)]);
+    }
 }

@@ -23,7 +23,11 @@ pub use fauerby::FauerbyOptions;
 pub use linahan::LinahanOptions;
 pub use robust::RobustOptions;
 
-use crate::detect::{DetectOptions, Detection, Hit, Neighbourhood, Proximity, Reach, check_finite, earliest_hit};
+use crate::detect::{
+    DetectOptions, Detection, Hit, Neighbourhood, Proximity, Reach, check_finite, check_in_radii, earliest_hit,
+    espace_magnitude,
+};
+use crate::error::{count, not_negative, out_of_range, positive};
 use crate::geom::{Ellipsoid, Vec3, norm};
 use crate::world::World;
 use crate::{Error, Real};
@@ -115,9 +119,8 @@ impl MoveOptions {
     /// # Errors
     /// [`Error::InvalidArgument`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), Error> {
-        let (d, r) = (&self.detect, &self.robust);
-        not_negative("detect.touch_ulps", d.touch_ulps)?;
-        not_negative("detect.approach_ulps", d.approach_ulps)?;
+        let r = &self.robust;
+        self.detect.validate()?;
         not_negative("robust.padding_ulps", r.padding_ulps)?;
         not_negative("robust.position_ulps", r.position_ulps)?;
         not_negative("robust.parallel_ulps", r.parallel_ulps)?;
@@ -131,41 +134,6 @@ impl MoveOptions {
         count("robust.max_iterations", r.max_iterations, 1)?;
         count("robust.depenetration_rounds", r.depenetration_rounds, 0)?;
         count("fauerby.max_depth", self.fauerby.max_depth, 1)
-    }
-}
-
-/// The error for option `what` (kept out of line: a valid option costs a
-/// comparison).
-#[cold]
-#[inline(never)]
-fn out_of_range(what: &str, message: String) -> Error {
-    Error::InvalidArgument { what: what.into(), message }
-}
-
-#[inline(always)]
-fn not_negative(what: &str, x: f64) -> Result<(), Error> {
-    if (0.0..=f64::MAX).contains(&x) {
-        Ok(())
-    } else {
-        Err(out_of_range(what, format!("must be finite and not negative, got {x}")))
-    }
-}
-
-#[inline(always)]
-fn positive(what: &str, x: f64) -> Result<(), Error> {
-    if x > 0.0 && x <= f64::MAX {
-        Ok(())
-    } else {
-        Err(out_of_range(what, format!("must be finite and positive, got {x}")))
-    }
-}
-
-#[inline(always)]
-fn count(what: &str, n: u32, least: u32) -> Result<(), Error> {
-    if (least..=MAX_ROUNDS).contains(&n) {
-        Ok(())
-    } else {
-        Err(out_of_range(what, format!("must lie in {least}..={MAX_ROUNDS}, got {n}")))
     }
 }
 
@@ -284,10 +252,13 @@ impl<T: Real> Frame<'_, T> {
 
     /// Gathers the candidates again around eSpace position `p` (after a
     /// push-out moved the body beyond the gathered box's margin).
-    pub fn regather(&mut self, p: &Vec3<T>) {
+    ///
+    /// # Errors
+    /// As [`Neighbourhood::gather`].
+    pub fn regather(&mut self, p: &Vec3<T>) -> Result<(), Error> {
         let at = self.body.from_espace(p) + &self.hood.origin;
         let reach = Reach::of_frame(self.body, &at, &[&self.moves[0], &self.moves[1]]);
-        self.hood.gather(self.world, self.body, &reach);
+        self.hood.gather(self.world, self.body, &reach)
     }
 
     /// Records a contact.
@@ -334,21 +305,8 @@ pub fn move_body<T: Real>(
     let reach = Reach::of_frame(body, position, &[velocity, gravity]);
     let trace = Trace { iterations: 0, contacts: SmallVec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
     let moves = [velocity.clone(), gravity.clone()];
-    let start_magnitude = body.to_espace(position).iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max);
-    // In radii, the displacements' lengths (their sum is in the reach) and
-    // the start must be representable: beyond, a length squared is
-    // infinite and no response can work (the robust one would stop, the
-    // faithful ones give NaN).
-    if !(reach.radius.is_finite() && start_magnitude.is_finite()) {
-        return Err(Error::InvalidArgument {
-            what: "move".into(),
-            message: format!(
-                "measured in the body's radii, the displacement ({:e}) or the position ({start_magnitude:e}) \
-                 overflows this precision: move in smaller steps or use a wider precision",
-                (reach.radius.clone() - T::c(crate::detect::REACH_MARGIN)).to_f64(),
-            ),
-        });
-    }
+    let start_magnitude = espace_magnitude(body, position);
+    check_in_radii(start_magnitude, &reach)?;
     let mut frame = Frame {
         world,
         body,
@@ -363,12 +321,12 @@ pub fn move_body<T: Real>(
         met: SmallVec::new(),
         seeds: SmallVec::new(),
     };
-    frame.hood.gather(world, body, &reach);
+    frame.hood.gather(world, body, &reach)?;
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();
     let still = |v: &Vec3<T>| v.iter().all(|x| *x == T::zero());
     if options.response == Response::Robust {
-        p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust);
+        p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust)?;
     }
     for vel in [velocity, gravity] {
         if still(vel) {

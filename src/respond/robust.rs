@@ -75,9 +75,9 @@
 //! direction of its deepest overlap (up to `depenetration_rounds` times).
 
 use super::{Frame, StopReason};
-use crate::Real;
 use crate::detect::{Candidate, DetectOptions, Detection, Hit, proximity};
 use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
+use crate::{Error, Real};
 use smallvec::SmallVec;
 use std::borrow::Cow;
 
@@ -508,16 +508,25 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
 /// the first pass). The scan that finds the resting contacts also tells
 /// whether anything is nearer than 1, so a body that starts free costs one
 /// scan.
-pub(crate) fn start<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, moving: bool, opts: &RobustOptions) -> Vec3<T> {
+///
+/// # Errors
+/// As [`Neighbourhood::gather`](crate::detect::Neighbourhood::gather), for
+/// the candidates gathered again after a long push-out.
+pub(crate) fn start<T: Real>(
+    frame: &mut Frame<'_, T>,
+    p: Vec3<T>,
+    moving: bool,
+    opts: &RobustOptions,
+) -> Result<Vec3<T>, Error> {
     if !moving {
         return depenetrate(frame, p, opts);
     }
     let nearest = scan_resting(frame, &p, opts);
     if nearest.as_ref().is_some_and(|n| n.dist < T::one()) {
-        let p = depenetrate(frame, p, opts);
-        return settle(frame, p, opts);
+        let p = depenetrate(frame, p, opts)?;
+        return Ok(settle(frame, p, opts));
     }
-    restore_skin(frame, p, nearest, opts)
+    Ok(restore_skin(frame, p, nearest, opts))
 }
 
 /// Pushes a body that starts embedded out of the geometry (run at the start
@@ -526,7 +535,7 @@ pub(crate) fn start<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, moving: bool,
 /// deepest overlap (from the closest point to the centre; the face's front
 /// normal if the centre lies on the face, or anywhere behind its plane when
 /// triangles are one-sided), to `1 + pad` from it.
-fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
+fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustOptions) -> Result<Vec3<T>, Error> {
     let one = T::one();
     for _ in 0..opts.depenetration_rounds {
         let mut deepest: Option<(T, Vec3<T>, &Candidate<T>)> = None;
@@ -561,7 +570,7 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
         p += dir * push;
     }
     if frame.trace.depenetration > crate::detect::REACH_MARGIN - 1.0 {
-        frame.regather(&p);
+        frame.regather(&p)?;
     }
-    p
+    Ok(p)
 }

@@ -212,12 +212,21 @@ impl TriangleMesh {
     }
 
     /// The mesh with its internal edges recomputed for another angle
-    /// threshold (degrees; the default is [`INTERNAL_EDGE_DEGREES`]). Zero
-    /// makes only exactly coplanar and concave edges internal.
-    #[must_use]
-    pub fn with_internal_edge_angle(mut self, degrees: f64) -> Self {
+    /// threshold (degrees, in `[0, 180]`; the default is
+    /// [`INTERNAL_EDGE_DEGREES`]). Zero makes only exactly coplanar and
+    /// concave edges internal.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for an angle outside `[0, 180]` or NaN.
+    pub fn with_internal_edge_angle(mut self, degrees: f64) -> Result<Self, Error> {
+        if !(0.0..=180.0).contains(&degrees) {
+            return Err(Error::InvalidArgument {
+                what: "internal edge angle".into(),
+                message: format!("must lie in [0, 180] degrees, got {}", crate::error::Num(degrees)),
+            });
+        }
         self.active = self.adjacency.active_features(&self.vertices, &self.triangles, degrees.to_radians().cos());
-        self
+        Ok(self)
     }
 
     /// The bounding-volume hierarchy.

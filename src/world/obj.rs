@@ -1,8 +1,12 @@
 //! A Wavefront OBJ reader for collision geometry, with line numbers in
 //! every error.
 //!
-//! Reads `v` (positions) and `f` (faces, any `v`, `v/vt`, `v//vn`,
-//! `v/vt/vn` form, negative indices counted from the end). Polygons are
+//! Reads `v` (positions; an optional fourth coordinate, the weight of
+//! rational curves, must be a finite number and is not used: polygons have
+//! no use for it) and `f` (faces, any `v`, `v/vt`, `v//vn`, `v/vt/vn`
+//! form, negative indices counted from the end; the texture and normal
+//! indices are checked like the vertex's, against the `vt` and `vn`
+//! statements read so far, and not used). Polygons are
 //! triangulated as a fan around their first vertex. Statements that carry no
 //! collision geometry (`vt`, `vn`, `o`, `g`, `s`, `usemtl`, `mtllib`, ...)
 //! are accepted and ignored; `l` and `p` (lines and points) are geometry a
@@ -32,6 +36,8 @@ pub struct ObjData {
 /// vertices, an index of zero or out of range, or a line/point element.
 pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
     let mut data = ObjData::default();
+    // `vt` and `vn` statements read so far, for the faces' other indices.
+    let (mut textures, mut normals) = (0, 0);
     let err = |line: usize, message: String| Error::Obj { path: path.to_path_buf(), line, message };
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (n, raw) in text.lines().enumerate() {
@@ -62,7 +68,8 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
             "f" => {
                 let mut corners = Vec::with_capacity(4);
                 for word in words {
-                    corners.push(resolve_index(word, data.vertices.len()).map_err(|m| err(line, m))?);
+                    let corner = resolve_corner(word, [data.vertices.len(), textures, normals]);
+                    corners.push(corner.map_err(|m| err(line, m))?);
                 }
                 if corners.len() < 3 {
                     return Err(err(line, format!("face needs at least 3 vertices, found {}", corners.len())));
@@ -75,9 +82,10 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
             "l" | "p" => {
                 return Err(err(line, format!("`{keyword}` elements (lines, points) are not collision geometry")));
             }
-            "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "cstype" | "deg" | "curv" | "surf"
-            | "parm" | "end" | "lod" | "bevel" | "c_interp" | "d_interp" | "shadow_obj" | "trace_obj" | "maplib"
-            | "usemap" | "mg" => {}
+            "vt" => textures += 1,
+            "vn" => normals += 1,
+            "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "cstype" | "deg" | "curv" | "surf" | "parm" | "end"
+            | "lod" | "bevel" | "c_interp" | "d_interp" | "shadow_obj" | "trace_obj" | "maplib" | "usemap" | "mg" => {}
             other => return Err(err(line, format!("unknown statement `{other}`"))),
         }
     }
@@ -85,17 +93,35 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
 }
 
 /// Resolves one face corner (`v`, `v/vt`, `v//vn`, `v/vt/vn`) to a 0-based
-/// vertex index among the `count` vertices read so far.
-fn resolve_index(word: &str, count: usize) -> Result<u32, String> {
-    let first = word.split('/').next().unwrap_or("");
-    let i: i64 = first.parse().map_err(|_| format!("`{word}` is not a vertex index"))?;
+/// vertex index, given how many vertices, texture coordinates and normals
+/// (`counts`) were read so far; the texture and normal indices, where
+/// given, must be valid too.
+fn resolve_corner(word: &str, counts: [usize; 3]) -> Result<u32, String> {
+    let parts: Vec<&str> = word.split('/').collect();
+    if parts.len() > 3 {
+        return Err(format!("`{word}` is not a face corner (v, v/vt, v//vn or v/vt/vn)"));
+    }
+    let vertex = resolve_index(parts[0], counts[0], "vertex", word)?;
+    for (k, (part, what)) in parts.iter().zip(["vertex", "texture coordinate", "normal"]).enumerate().skip(1) {
+        if !part.is_empty() {
+            resolve_index(part, counts[k], what, word)?;
+        }
+    }
+    u32::try_from(vertex).map_err(|_| format!("vertex index of `{word}` is too large"))
+}
+
+/// A 1-based (or, negative, from-the-end) OBJ index as 0-based, among the
+/// `count` elements of its kind (`what`) read so far; `word` is the corner
+/// it belongs to, for the message.
+fn resolve_index(text: &str, count: usize, what: &str, word: &str) -> Result<usize, String> {
+    let i: i64 = text.parse().map_err(|_| format!("`{word}`: `{text}` is not a {what} index"))?;
     let resolved = match i {
-        0 => return Err("vertex index 0 is invalid (OBJ indices start at 1)".to_string()),
+        0 => return Err(format!("{what} index 0 is invalid (OBJ indices start at 1)")),
         i if i > 0 => i - 1,
         i => count as i64 + i,
     };
     if resolved < 0 || resolved >= count as i64 {
-        return Err(format!("vertex index {i} is out of range ({count} vertices defined so far)"));
+        return Err(format!("{what} index {i} is out of range ({count} defined so far)"));
     }
-    u32::try_from(resolved).map_err(|_| format!("vertex index {i} is too large"))
+    usize::try_from(resolved).map_err(|_| format!("{what} index {i} is too large"))
 }
