@@ -352,11 +352,12 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
             Some(dir) => Ok(list(dir)),
             None => Ok(list(std::path::Path::new(default))),
         };
-    // An unwritable output directory is reported before the runs.
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| Failure(Error::Io { path: args.out.clone(), message: e.to_string() }))?;
     let meshes = files_in(&args.meshes, "--meshes", "../shared/meshes", scenes::meshes_in)?;
     let cases = files_in(&args.cases, "--cases", "scenes/fuzz", scenes::cases_in)?;
+    // An unwritable output directory is reported before the runs (and
+    // after the arguments, so a bad one leaves no directory behind).
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| Failure(Error::Io { path: args.out.clone(), message: e.to_string() }))?;
     let (info, entries) = matrix::matrix(args.quick, &meshes, &cases);
     let entries = match args.shard {
         Some((k, n)) => matrix::shard(entries, k, n)?,
