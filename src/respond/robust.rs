@@ -69,7 +69,7 @@
 //! coordinate of the frame's start
 //! (which bounds the rounding of the final `start + displacement`). In `f32`
 //! at the origin that is about `3e-6`, in `f64` about `5e-15`, at `1e5` in
-//! `f32` about `0.024` (eSpace units).
+//! `f32` the cap, `0.01` (the formula gives `0.024`; eSpace units).
 //!
 //! A body that starts embedded is first pushed out along the separating
 //! direction of its deepest overlap (up to `depenetration_rounds` times).
