@@ -175,3 +175,22 @@ fn quick_report_is_complete_and_self_contained() {
     assert_eq!(csv.lines().count(), info.runs + 1);
     std::fs::remove_dir_all(&out).ok();
 }
+
+#[test]
+fn unreadable_runs_json_is_io_and_malformed_or_non_utf8_is_invalid_argument() {
+    use sweepslide::Error;
+    let dir = std::env::temp_dir().join(format!("sweepslide-bad-runs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    assert!(matches!(sweepslide::report::read_runs(&dir), Err(Error::Io { .. })));
+    for bytes in [&b"{\"info\": \"\xff\xfe\"}"[..], b"{\"info\": 1,"] {
+        std::fs::write(dir.join("runs.json"), bytes).unwrap();
+        match sweepslide::report::read_runs(&dir) {
+            Err(Error::InvalidArgument { what, message }) => {
+                assert!(what.ends_with("runs.json"), "{what}");
+                assert!(message.contains("line 1"), "{message}");
+            }
+            other => panic!("{:?}", other.map(|r| r.records.len())),
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

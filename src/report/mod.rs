@@ -80,11 +80,11 @@ pub fn write_runs(dir: &Path, runs: &Runs) -> Result<(), Error> {
 ///
 /// # Errors
 /// [`Error::Io`] when it cannot be read, [`Error::InvalidArgument`] (with
-/// the line and column) when it is malformed.
+/// the line and column) when it is malformed, not UTF-8 included.
 pub fn read_runs(dir: &Path) -> Result<Runs, Error> {
     let path = dir.join("runs.json");
-    let text = std::fs::read_to_string(&path).map_err(|e| io(&path, e))?;
-    serde_json::from_str(&text)
+    let bytes = std::fs::read(&path).map_err(|e| io(&path, e))?;
+    serde_json::from_slice(&bytes)
         .map_err(|e| Error::InvalidArgument { what: path.display().to_string(), message: e.to_string() })
 }
 
