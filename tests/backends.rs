@@ -589,6 +589,99 @@ fn with_precision_is_per_thread() {
     .unwrap();
 }
 
+/// A box `[-10, 10]^3` without its top, as triangles facing inwards.
+fn open_box() -> std::sync::Arc<sweepslide::world::TriangleMesh> {
+    let h = 10.0;
+    let v =
+        vec![[-h, 0.0, -h], [h, 0.0, -h], [h, 0.0, h], [-h, 0.0, h], [-h, h, -h], [h, h, -h], [h, h, h], [-h, h, h]];
+    let t = vec![
+        [0, 2, 1],
+        [0, 3, 2],
+        [0, 1, 5],
+        [0, 5, 4],
+        [1, 2, 6],
+        [1, 6, 5],
+        [2, 3, 7],
+        [2, 7, 6],
+        [3, 0, 4],
+        [3, 4, 7],
+    ];
+    std::sync::Arc::new(sweepslide::world::TriangleMesh::new(v, t).unwrap())
+}
+
+/// `move_bodies` computes at the caller's run-time precision on rayon's
+/// workers (found by a review: they ran at the default 53 bits on 24-bit
+/// values, differed from `move_body` for every body and let them into the
+/// walls).
+#[test]
+fn move_bodies_runs_at_the_callers_dynamic_precision() {
+    use sweepslide::respond::{BodyMove, MoveOptions, Response, move_bodies, move_body};
+    use sweepslide::world::World;
+    for bits in [12, 24, 113] {
+        with_precision(bits, || {
+            let world = World::<MpfrDyn>::new(open_box()).unwrap();
+            let body = Ellipsoid::<MpfrDyn>::new([0.4, 0.9, 0.4]).unwrap();
+            let opts = MoveOptions::new(Response::Robust);
+            let moves: Vec<BodyMove<MpfrDyn>> = (0..64)
+                .map(|i| BodyMove {
+                    body: body.clone(),
+                    position: vec3(-9.0 + 0.27 * f64::from(i), 0.9 + 1e-3 * f64::from(i), 9.5),
+                    velocity: vec3(0.3, -0.05, 0.7),
+                    gravity: Some(vec3(0.0, -0.3, 0.0)),
+                })
+                .collect();
+            let batch = move_bodies(&world, &moves, &opts);
+            for (m, b) in moves.iter().zip(batch) {
+                let one = move_body(&world, &m.body, &m.position, &m.velocity, m.gravity.as_ref(), &opts).unwrap();
+                let b = b.unwrap();
+                assert_eq!(b.position, one.position, "{bits} bits");
+                assert!(b.position.iter().all(|x| x.as_rug().prec() == bits), "{bits} bits");
+            }
+        })
+        .unwrap();
+    }
+}
+
+/// `MpfrDyn` inputs made at another precision than the thread's are
+/// refused (a world, a body or a position from another `with_precision`
+/// scope), not silently mixed.
+#[test]
+fn mixed_dynamic_precisions_are_refused() {
+    use sweepslide::Error;
+    use sweepslide::respond::{MoveOptions, Response, move_body};
+    use sweepslide::world::World;
+    let at = |bits| {
+        with_precision(bits, || {
+            let world = World::<MpfrDyn>::new(open_box()).unwrap();
+            let body = Ellipsoid::<MpfrDyn>::sphere(0.5).unwrap();
+            let p: Vec3<MpfrDyn> = vec3(0.0, 1.0, 0.0);
+            (world, body, p)
+        })
+        .unwrap()
+    };
+    let (w24, b24, p24) = at(24);
+    let (w53, b53, p53) = at(53);
+    let opts = MoveOptions::new(Response::Robust);
+    with_precision(53, || {
+        let v: Vec3<MpfrDyn> = vec3(0.1, -0.1, 0.0);
+        assert!(move_body(&w53, &b53, &p53, &v, None, &opts).is_ok());
+        for (what, result) in [
+            ("world", move_body(&w24, &b53, &p53, &v, None, &opts)),
+            ("body", move_body(&w53, &b24, &p53, &v, None, &opts)),
+            ("position", move_body(&w53, &b53, &p24, &v, None, &opts)),
+        ] {
+            match result {
+                Err(Error::InvalidArgument { what: w, message }) => {
+                    assert_eq!(w, what);
+                    assert!(message.contains("24-bit values") && message.contains("53 bits"), "{message}");
+                }
+                other => panic!("{what}: expected InvalidArgument, got {:?}", other.map(|m| m.position)),
+            }
+        }
+    })
+    .unwrap();
+}
+
 // ---------------------------------------------------------------------------
 // Bit-exact self-check: Mpfr<24> == f32, Mpfr<53> == f64
 // ---------------------------------------------------------------------------

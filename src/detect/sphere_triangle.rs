@@ -375,15 +375,24 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
 
     // The centre moves at most `|vel|`, and at most `l |vel|` before the
     // best time `l` so far, so a triangle farther than `1 + l |vel|` cannot
-    // win (the margin covers the rounding of the distance, of order
-    // `u * far * k` with `k` the shape factor for the closest point below:
-    // Ericson's barycentric closest point drifts along a sliver): this
-    // rejects most near misses before the edge and vertex quadratics.
+    // win: this rejects most near misses before the edge and vertex
+    // quadratics. The margin covers the rounding of the closest point
+    // below: Ericson's face coordinates are quotients of differences of
+    // products of dot products `d_i` (each up to `|e| far`, `|e|` the
+    // longest edge), off by about `u (|e| far)^2 / |(b - a) x (c - a)|^2`,
+    // which moves the point by `|e|` times that: `u far k` times the lever
+    // `max(1, k far / |e|)`, `k` the shape factor. The lever is about 1 for
+    // a well-shaped triangle near the body and large for a long sliver
+    // seen from far along it (a 600 x 0.6 strip from 34 units along it put
+    // the point 5.4 away where it is 1.5 in `f32`, and the body fell
+    // through: tests/regressions/detect_long_slivers.rs).
     let far = max_abs(p[2], max_abs(p[1], max_abs(p[0], one.clone())));
     // The face normal, or for a degenerate triangle the direction against
     // the motion: the fallback direction of a contact.
     let face_normal = || normal.clone().unwrap_or_else(|| -vel.clone());
-    let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape;
+    let longest = c.edge_sq.iter().fold(T::zero(), |m, l| m.max(l.clone())).sqrt();
+    let lever = (c.shape.clone() * &far / longest).max(one.clone());
+    let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape * lever;
     // Before `limit` (an earlier triangle's hit) the centre has moved at
     // most `limit |vel|`.
     let travel = limit.map_or_else(|| speed.clone(), |l| l.clone().min(one.clone()) * speed);

@@ -126,6 +126,26 @@ pub trait Real:
     fn c(x: f64) -> Self {
         Self::from_f64(x)
     }
+
+    /// The precision this value carries, for a backend whose values keep
+    /// the precision they were created with while [`Real::bits`] is a
+    /// thread's setting ([`MpfrDyn`]); `None` for the
+    /// fixed-precision backends. [`crate::respond::move_body`] refuses
+    /// inputs whose precision differs from the thread's.
+    #[must_use]
+    fn own_bits(&self) -> Option<u32> {
+        None
+    }
+
+    /// Runs `f` with this backend computing at `bits` bits on the current
+    /// thread, for work handed to other threads: [`MpfrDyn`]'s
+    /// precision is a per-thread setting, so a worker must take the
+    /// caller's [`Real::bits`] (as [`crate::respond::move_bodies`] does).
+    /// For every other backend `f` simply runs.
+    fn with_bits<R>(bits: u32, f: impl FnOnce() -> R) -> R {
+        let _ = bits;
+        f()
+    }
 }
 
 /// `2^e` exactly, built from its bit pattern (no `exp2` call on the hot

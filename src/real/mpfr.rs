@@ -52,6 +52,11 @@ pub type MpfrDyn = Mpfr<DYNAMIC>;
 /// [`Error::PrecisionOutOfRange`] unless `MIN_BITS <= bits <= MAX_BITS`.
 pub fn with_precision<R>(bits: u32, f: impl FnOnce() -> R) -> Result<R, Error> {
     check_bits(bits)?;
+    Ok(at_precision(bits, f))
+}
+
+/// [`with_precision`] for a precision already checked (one a thread uses).
+fn at_precision<R>(bits: u32, f: impl FnOnce() -> R) -> R {
     struct Restore(u32);
     impl Drop for Restore {
         fn drop(&mut self) {
@@ -59,7 +64,7 @@ pub fn with_precision<R>(bits: u32, f: impl FnOnce() -> R) -> Result<R, Error> {
         }
     }
     let _restore = Restore(DYNAMIC_BITS.with(|c| c.replace(bits)));
-    Ok(f())
+    f()
 }
 
 fn check_bits(bits: u32) -> Result<(), Error> {
@@ -192,5 +197,11 @@ impl<const BITS: u32> Real for Mpfr<BITS> {
     }
     fn from_rug(x: &Float) -> Self {
         Self::from_rug(x)
+    }
+    fn own_bits(&self) -> Option<u32> {
+        (BITS == DYNAMIC).then(|| self.0.prec())
+    }
+    fn with_bits<R>(bits: u32, f: impl FnOnce() -> R) -> R {
+        if BITS == DYNAMIC { at_precision(bits, f) } else { f() }
     }
 }

@@ -23,11 +23,20 @@ pub struct BodyMove<T: Real> {
 /// pool; install a pool to choose the thread count). Bodies do not collide
 /// with each other. The results come back in the order of `moves` and are
 /// identical to calling [`move_body`] on each in turn: each move is
-/// independent and deterministic.
+/// independent and deterministic, and each worker computes at the calling
+/// thread's precision ([`Real::with_bits`]: [`crate::MpfrDyn`]'s is a
+/// per-thread setting, which rayon's workers would otherwise leave at its
+/// default of 53 bits).
 pub fn move_bodies<T: Real>(
     world: &World<T>,
     moves: &[BodyMove<T>],
     options: &MoveOptions,
 ) -> Vec<Result<Move<T>, Error>> {
-    moves.par_iter().map(|m| move_body(world, &m.body, &m.position, &m.velocity, m.gravity.as_ref(), options)).collect()
+    let bits = T::bits();
+    moves
+        .par_iter()
+        .map(|m| {
+            T::with_bits(bits, || move_body(world, &m.body, &m.position, &m.velocity, m.gravity.as_ref(), options))
+        })
+        .collect()
 }

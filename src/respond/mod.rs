@@ -267,6 +267,25 @@ impl<T: Real> Frame<'_, T> {
     }
 }
 
+/// [`Error::InvalidArgument`] if a coordinate of `v` carries a precision
+/// other than the thread's ([`Real::own_bits`]: an [`crate::MpfrDyn`] value
+/// made under another [`crate::real::with_precision`]); arithmetic would
+/// round at the mixed operands' precisions and the tolerances would not
+/// match them.
+fn check_precision<T: Real>(what: &str, v: &Vec3<T>) -> Result<(), Error> {
+    match v.iter().find_map(|x| x.own_bits().filter(|b| *b != T::bits())) {
+        None => Ok(()),
+        Some(bits) => Err(Error::InvalidArgument {
+            what: what.into(),
+            message: format!(
+                "holds {bits}-bit values, but this thread computes at {} bits (with_precision): values of \
+                 different precisions do not mix",
+                T::bits()
+            ),
+        }),
+    }
+}
+
 /// Moves `body` from `position` by `velocity` (world space, this frame's
 /// displacement) through `world`, then, if given, by `gravity` in a second
 /// pass (Fauerby's scheme, used by all three responses).
@@ -282,7 +301,11 @@ impl<T: Real> Frame<'_, T> {
 /// infinite coordinate; [`Error::InvalidArgument`] if, measured in the
 /// body's radii (eSpace), the position or the displacements' length is not
 /// representable in `T` (their squares overflow: beyond about `1.8e19`
-/// radii in `f32`, `1.3e154` in `f64`). Never panics; the faithful responses may return a
+/// radii in `f32`, `1.3e154` in `f64`), if a triangle within reach is too
+/// long for `T` ([`Neighbourhood::gather`]), or if an [`crate::MpfrDyn`]
+/// input (position, velocity, gravity, the body's radii or the world's
+/// vertices) was made at another precision than the thread's
+/// ([`Real::own_bits`]). Never panics; the faithful responses may return a
 /// NaN position where their arithmetic does (that is what the lab counts).
 pub fn move_body<T: Real>(
     world: &World<T>,
@@ -298,6 +321,13 @@ pub fn move_body<T: Real>(
     let zero = Vec3::zeros();
     let gravity = gravity.unwrap_or(&zero);
     check_finite("gravity", gravity)?;
+    let vertex = world.corners(0)[0];
+    for (what, v) in [("position", position), ("velocity", velocity), ("gravity", gravity)]
+        .into_iter()
+        .chain([("body", body.radii()), ("world", vertex)])
+    {
+        check_precision(what, v)?;
+    }
     let origin = match options.response {
         Response::Robust => position.clone(),
         Response::Fauerby | Response::Linahan => Vec3::zeros(),

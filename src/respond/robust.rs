@@ -25,7 +25,7 @@
 //!    robust detection already gives an edge or vertex contact between
 //!    coplanar or gently convex triangles, an internal edge of a tessellated
 //!    surface, the face normal, so seams do not snag; see
-//!    [`crate::world::Adjacency::active_features`].)
+//!    `world::Adjacency::active_features`.)
 //! 4. Project the original displacement, scaled by the fraction of the
 //!    frame left, onto the cone
 //!    `{v : v . n_i >= 0 for every plane met}`: exactly, by trying the

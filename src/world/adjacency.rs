@@ -44,9 +44,11 @@ pub struct Adjacency {
 }
 
 impl Adjacency {
-    /// Computes the adjacency of the given triangles over `vertices`.
+    /// Computes the adjacency of the given triangles over `vertices`
+    /// (crate-internal: the indices must be valid, as [`super::TriangleMesh`]
+    /// makes sure).
     #[must_use]
-    pub fn build(vertices: &[Vector3<f64>], triangles: &[[u32; 3]]) -> Self {
+    pub(crate) fn build(vertices: &[Vector3<f64>], triangles: &[[u32; 3]]) -> Self {
         let mut ids: HashMap<[u64; 3], u32> = HashMap::with_capacity(vertices.len());
         let weld: Vec<u32> = vertices
             .iter()
@@ -123,8 +125,11 @@ impl Adjacency {
     /// Whether a vertex ends an active edge is found once per vertex, so
     /// a polygon triangulated as a fan, whose centre ends the border, loads
     /// in linear time. Tessellated surfaces have degrees of 6 to 8.
+    /// (Crate-internal: `vertices` and `triangles` must be those the
+    /// adjacency was built from; [`super::TriangleMesh::with_internal_edge_angle`]
+    /// is the public way to choose `cos_min`.)
     #[must_use]
-    pub fn active_features(
+    pub(crate) fn active_features(
         &self,
         vertices: &[Vector3<f64>],
         triangles: &[[u32; 3]],

@@ -27,7 +27,7 @@ pub struct TriangleMesh {
 }
 
 /// Default largest angle between two triangles' normals for their shared
-/// edge to count as internal (see [`Adjacency::active_features`]): 5 degrees.
+/// edge to count as internal (see `Adjacency::active_features`): 5 degrees.
 pub const INTERNAL_EDGE_DEGREES: f64 = 5.0;
 
 impl TriangleMesh {

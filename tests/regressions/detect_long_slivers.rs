@@ -1,0 +1,76 @@
+//! Long, narrow triangles (strips of a floor split along their length) seen
+//! from far along them, found by a review: the robust test's early
+//! rejection took Ericson's closest point for exact within `64 u far k`
+//! (`k` the shape factor), but the face coordinates are quotients of
+//! differences of products, whose error moves the point by another factor
+//! of `k far / |e|` (`|e|` the longest edge). From 34 units along a
+//! 600 x 0.6 strip, `f32` put the closest point 5.4 away where it is 1.5,
+//! the strip was rejected, and bodies fell through it (0.08 radii in `f32`;
+//! up to 0.3 radii in `f64` on a 6e6 x 6 strip).
+
+use std::sync::Arc;
+use sweepslide::Real;
+use sweepslide::detect::{DetectOptions, Detection, sweep_world};
+use sweepslide::geom::{Ellipsoid, Vec3, vec3};
+use sweepslide::lab::metrics::penetration;
+use sweepslide::respond::{MoveOptions, Response, move_body};
+use sweepslide::world::{TriangleMesh, World};
+
+/// A strip `[-h, h] x [-w, w]` in the plane y = 0, as two triangles split
+/// along its diagonal.
+fn strip(h: f64, w: f64) -> Arc<TriangleMesh> {
+    let v = vec![[-h, 0.0, -w], [h, 0.0, w], [h, 0.0, -w], [-h, 0.0, w]];
+    Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [0, 3, 1]]).unwrap())
+}
+
+/// Downward sweeps from 1.5 above a grid of points over the strip: every
+/// one hits at `t = 0.5`.
+fn sweeps_hit<T: Real>(h: f64, w: f64) {
+    let world = World::<T>::new(strip(h, w)).unwrap();
+    let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+    for i in 0..=64 {
+        for j in 0..=8 {
+            let x = -0.95 * h + 1.9 * h * f64::from(i) / 64.0;
+            let z = -0.95 * w + 1.9 * w * f64::from(j) / 8.0;
+            let (p, d): (Vec3<T>, Vec3<T>) = (vec3(x, 1.5, z), vec3(0.0, -1.0, 0.0));
+            let hit = sweep_world(&world, &body, &p, &d, Detection::Robust, &DetectOptions::default()).unwrap();
+            let t = hit.map(|h| h.t.to_f64());
+            assert!(t.is_some_and(|t| (t - 0.5).abs() < 1e-3), "{} ({x}, {z}): {t:?}", T::name());
+        }
+    }
+}
+
+#[test]
+fn robust_sweeps_meet_a_long_strip_from_anywhere_above_it() {
+    sweeps_hit::<f32>(300.0, 0.3);
+    sweeps_hit::<f32>(400.0, 0.1);
+    sweeps_hit::<f64>(3e6, 3.0);
+}
+
+/// A unit sphere resting 1.5 above the strip, pulled down by `gravity` for
+/// a few frames, from a grid of starts: never inside (exact judge).
+fn rests_on_strip<T: Real>(h: f64, w: f64, gravity: f64) {
+    let world = World::<T>::new(strip(h, w)).unwrap();
+    let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+    let opts = MoveOptions::new(Response::Robust);
+    let g: Vec3<T> = vec3(0.0, -gravity, 0.0);
+    for i in 0..=48 {
+        for j in 0..=6 {
+            let x = -0.95 * h + 1.9 * h * f64::from(i) / 48.0 + 0.123;
+            let z = -0.9 * w + 1.8 * w * f64::from(j) / 6.0;
+            let mut p: Vec3<T> = vec3(x, 1.5, z);
+            for frame in 0..5 {
+                p = move_body(&world, &body, &p, &Vec3::zeros(), Some(&g), &opts).unwrap().position;
+                let pen = penetration(&world, body.radii(), &p).unwrap_or(-1.0);
+                assert!(pen <= 0.0, "{} ({x}, {z}) frame {frame}: {pen:e} inside", T::name());
+            }
+        }
+    }
+}
+
+#[test]
+fn a_robust_body_does_not_fall_through_a_long_strip() {
+    rests_on_strip::<f32>(300.0, 0.3, 1.0);
+    rests_on_strip::<f32>(400.0, 0.6, 1.0);
+    rests_on_strip::<f64>(3e6, 3.0, 0.2);
+}
