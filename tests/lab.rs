@@ -33,6 +33,46 @@ fn body_inside_a_plane_by_a_tenth_reports_a_tenth() {
     assert_eq!(penetration(&world, &vec3(1.0, 1.0, 1.0), &vec3(0.0, 1.5, 0.0)), None);
 }
 
+/// A negative penetration is minus the clearance to the nearest triangle,
+/// up to `PENETRATION_REACH` (a review found -7.05 where the clearance was
+/// 8.5e-6: a far triangle of a BVH leaf stood in for a wall just outside a
+/// box that reached only `1e-6` beyond the radius).
+#[test]
+fn a_negative_penetration_is_the_clearance_within_reach() {
+    use sweepslide::lab::metrics::PENETRATION_REACH;
+    // A floor in one BVH leaf; in another, four triangles far away and a
+    // long one reaching back over the floor, 3 above it. (A box reaching
+    // `1e-6` beyond the radius missed the floor a gap below: no value at
+    // all here, a far triangle's in the review's scene.)
+    let mut v = vec![[-10.0, 0.0, -10.0], [-10.0, 0.0, 10.0], [10.0, 0.0, 10.0], [10.0, 0.0, -10.0]];
+    let mut t = vec![[0, 1, 2], [0, 2, 3]];
+    for k in 0..4 {
+        let x = 100.0 + 3.0 * f64::from(k);
+        let i = v.len() as u32;
+        v.extend([[x, 0.0, 0.0], [x + 1.0, 0.0, 0.0], [x, 1.0, 0.0]]);
+        t.push([i, i + 1, i + 2]);
+    }
+    let i = v.len() as u32;
+    v.extend([[-5.0, 4.1, -1.0], [-5.0, 4.1, 1.0], [120.0, 5.0, 0.0]]);
+    t.push([i, i + 1, i + 2]);
+    let world = World::<f64>::new(Arc::new(TriangleMesh::new(v, t).unwrap())).unwrap();
+    let r = vec3(1.0, 1.0, 1.0);
+    for gap in [8.5e-6, 0.01, 0.04] {
+        let pen = penetration(&world, &r, &vec3(0.0, 1.0 + gap, 0.0)).unwrap();
+        assert!((pen + gap).abs() < 1e-15, "{gap}: {pen}");
+    }
+    assert_eq!(penetration(&world, &r, &vec3(0.0, 1.0 + PENETRATION_REACH + 1e-9, 0.0)), None);
+    // A wall only, just beyond the radius along x, far from the origin in
+    // `f32`: found from either side.
+    let v = vec![[1e5 + 1.001, -5.0, -5.0], [1e5 + 1.001, 5.0, -5.0], [1e5 + 1.001, 0.0, 5.0]];
+    let world = World::<f32>::new(Arc::new(TriangleMesh::new(v, vec![[0, 1, 2]]).unwrap())).unwrap();
+    let wall = f64::from((1e5f64 + 1.001) as f32);
+    for x in [1e5, 1e5 + 0.0078125, 1e5 + 0.5] {
+        let pen = penetration(&world, &vec3(1.0, 1.0, 1.0), &vec3(x, 0.0, 0.0)).unwrap();
+        assert_eq!(pen, 1.0 - (wall - f64::from(x as f32)), "{x}");
+    }
+}
+
 #[test]
 fn ellipsoid_penetration_is_in_espace_units() {
     let world = floor();

@@ -225,16 +225,20 @@ fn check_mesh(name: &str, faces_in_file: usize) {
 
 /// The lab's default scene on the mesh (the one the report and the mesh
 /// benches run) measures the model, not a fall past it: the body lands and
-/// spends at least a fifth of its frames in contact range, never inside.
-/// (With a push of 0.4% of the diagonal a frame, the walk left the bunny
-/// and the fandisk before touching them.)
+/// spends at least a sixth of its frames within `PENETRATION_REACH` (0.05
+/// radii) of it, never inside. (With a push of 0.4% of the diagonal a
+/// frame, the walk left the bunny and the fandisk before touching them.
+/// Until the eighteenth session "near" was looser, a triangle's box
+/// meeting the body's, and the bar a fifth; the fandisk's walk is within
+/// 0.05 radii in 58 of 300 frames, the cow's 83, the bunny's 105, the
+/// teapot's 285.)
 fn check_obj_scene(name: &str) {
     let scene = Arc::new(Scene::from_obj(&mesh_dir().join(format!("{name}.obj"))).expect("loads"));
     let config = RunConfig { scene, response: Response::Robust, detection: None, precision: Precision::F64, seed: 1 };
     let out = run(&config).expect("runs");
     let near = out.frames.iter().filter(|f| f.penetration.is_some()).count();
     eprintln!("{name}: lab scene near the model in {near} of {} frames", out.frames.len());
-    assert!(near * 5 >= out.frames.len(), "{name}: near the model in only {near} of {} frames", out.frames.len());
+    assert!(near * 6 >= out.frames.len(), "{name}: near the model in only {near} of {} frames", out.frames.len());
     assert_eq!(out.result.penetrating_frames, 0, "{name}: {:?}", out.result);
 }
 

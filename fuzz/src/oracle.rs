@@ -699,8 +699,9 @@ pub fn prepare<T: Real>(case: &MoveCase) -> Result<Prepared<T>, Skip> {
     }
     match penetration(&world, body.radii(), &start) {
         Some(p) if p > 0.0 => return Err(Skip::StartsInside),
-        // `penetration` gives `None` when nothing lies within `1e-6` of the
-        // body, but the skin may reach further (fuzz finding F25).
+        // `penetration` gives `None` when nothing lies within
+        // `PENETRATION_REACH` of the body, but the skin may reach further
+        // (fuzz finding F25).
         _ if squeezed::<T>(case, &case.start, 0, 0.0) => {
             return Err(Skip::StartsSqueezed);
         }

@@ -82,21 +82,44 @@ fn exact<T: Real>(v: &Vec3<T>) -> V {
     [0, 1, 2].map(|i| f(&v[i].to_rug()))
 }
 
+/// How far beyond the radius [`penetration`] looks, in eSpace units: it
+/// reports the exact (negative) penetration of a body clear of the mesh
+/// by at most this much, the clearance of a body resting on it.
+pub const PENETRATION_REACH: f64 = 0.05;
+
 /// The exact penetration of a body with `radii` centred at `position` into
 /// the triangles of `world`: `1 - d` with `d` the exact eSpace distance from
 /// the centre to the mesh (coordinates divided by the radii at 512 bits),
 /// multiplied by the radius for a sphere (so it is in world units) and left
-/// in eSpace units for an ellipsoid. Positive means inside the geometry;
-/// `None` when no triangle is within reach (clearly not penetrating) or the
-/// position is not finite.
+/// in eSpace units for an ellipsoid. Positive means inside the geometry,
+/// negative is minus the clearance; `None` when no triangle comes within
+/// `1 + PENETRATION_REACH` of the centre (eSpace: clear by more than
+/// that) or the position is not finite.
+///
+/// Every triangle within that distance is examined: the box they must
+/// meet is computed in `f64` and rounded outward (in `T`, `position -
+/// radii` rounds to nearest, and far from the origin a box that rounds
+/// inward by half a unit in the last place, 0.004 at 1e5 in `f32`, could
+/// miss a triangle that a body has sunk into). Until the eighteenth
+/// session the box reached `1e-6` beyond the radius, and a negative
+/// value could come from a far triangle of a BVH leaf while a nearer one
+/// lay outside the box (a review found -7.05 where the clearance was
+/// 8.5e-6); positive values were exact.
 #[must_use]
 pub fn penetration<T: Real>(world: &World<T>, radii: &Vec3<T>, position: &Vec3<T>) -> Option<f64> {
     if !position.iter().all(Real::is_finite) {
         return None;
     }
-    let grow = radii * T::c(1.0 + 1e-6);
+    let centre = [0, 1, 2].map(|i| position[i].to_f64());
+    // The radii and centre as `f64` are rounded to nearest (for `MpfrDyn`
+    // and `Mpfr` beyond 53 bits): a relative `f64::EPSILON` covers them.
+    let half = |i: usize| {
+        radii[i].to_f64() * (1.0 + PENETRATION_REACH) * (1.0 + 4.0 * f64::EPSILON) + centre[i].abs() * f64::EPSILON
+    };
+    let min = nalgebra::Vector3::from_fn(|i, _| (centre[i] - half(i)).next_down());
+    let max = nalgebra::Vector3::from_fn(|i, _| (centre[i] + half(i)).next_up());
     let mut candidates = Vec::new();
-    world.candidates(&(position - &grow), &(position + &grow), &mut candidates);
+    world.candidates_f64(&min, &max, &mut candidates);
     if candidates.is_empty() {
         return None;
     }
@@ -113,6 +136,9 @@ pub fn penetration<T: Real>(world: &World<T>, radii: &Vec3<T>, position: &Vec3<T
         }
     }
     let d = best?.sqrt();
+    if d > 1.0 + PENETRATION_REACH {
+        return None;
+    }
     let pen = Float::with_val(EXACT_BITS, 1 - d);
     let sphere = r[0] == r[1] && r[1] == r[2];
     Some(if sphere { (pen * &r[0]).to_f64() } else { pen.to_f64() })

@@ -344,6 +344,17 @@ impl<T: Real> World<T> {
         self.each_candidate(min, max, None, |t| out.push(t));
     }
 
+    /// [`World::candidates`] for a box given in `f64` (rounded outward from
+    /// the caller's own values, which a box computed in `T` cannot be:
+    /// `T`'s subtraction rounds to nearest), widened by the conversion
+    /// slack.
+    pub fn candidates_f64(&self, min: &Vector3<f64>, max: &Vector3<f64>, out: &mut Vec<u32>) {
+        out.clear();
+        let lo = min.map(|x| (x - self.slack).next_down());
+        let hi = max.map(|x| (x + self.slack).next_up());
+        self.mesh.bvh.query(&Aabb { min: lo, max: hi }, None, |t| out.push(t));
+    }
+
     /// Calls `visit` with each triangle [`World::candidates`] would return,
     /// in the same order, without collecting them; given a `ball` (centre,
     /// per-axis radii, and a radius in units of those radii: an eSpace ball),
