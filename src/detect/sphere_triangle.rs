@@ -392,11 +392,11 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
     let face_normal = || normal.clone().unwrap_or_else(|| -vel.clone());
     let longest = c.edge_sq.iter().fold(T::zero(), |m, l| m.max(l.clone())).sqrt();
     let lever = (c.shape.clone() * &far / longest).max(one.clone());
-    let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape * lever;
+    let slack = T::c(64.0 * T::unit_roundoff()) * &far * &c.shape;
     // Before `limit` (an earlier triangle's hit) the centre has moved at
     // most `limit |vel|`.
     let travel = limit.map_or_else(|| speed.clone(), |l| l.clone().min(one.clone()) * speed);
-    let gap_bound = (one.clone() + travel) * &reach + &slack;
+    let gap_bound = (one.clone() + travel) * &reach + slack.clone() * lever;
     let gap_bound_sq = gap_bound.clone() * gap_bound;
     if clear_of_plane && limit.is_none() {
         // Not touching now, the distance serves only that rejection, and
@@ -422,6 +422,12 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
         if closest_sq > gap_bound_sq {
             return None;
         }
+        // Only a point this near decides a touch at the start (with the
+        // plain margin: the lever widens only the rejection above, since a
+        // point the face coordinates put far off is not near, and the
+        // sweep's own tests below find the contact; a tiny triangle far
+        // away, whose lever is huge, would otherwise be judged by its
+        // plane distance alone).
         let near = reach.clone() + &slack;
         if closest_sq <= near.clone() * near {
             let local = Local { p, c, face: normal.as_ref(), plane_dist: &plane_dist, nearest };

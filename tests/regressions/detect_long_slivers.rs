@@ -74,3 +74,27 @@ fn a_robust_body_does_not_fall_through_a_long_strip() {
     rests_on_strip::<f32>(400.0, 0.6, 1.0);
     rests_on_strip::<f64>(3e6, 3.0, 0.2);
 }
+
+/// The lever widens only the rejection, not the range in which the closest
+/// point decides a touch at the start: with it there too, a triangle
+/// 3e-4 across seen from 23,000 radii (lever about 1e9) was judged by its
+/// plane distance alone and met "overlapping" at `t = 0` (`sweep_triangle`
+/// fuzzing of this change, `fuzz/regressions/sweep_triangle/
+/// tiny-far-triangle-huge-lever-f32`; the `Mpfr<256>` reference meets its
+/// edge at `t = 0.5054`).
+#[test]
+fn a_tiny_triangle_far_away_is_not_touched_at_the_start() {
+    use sweepslide::detect::{Candidate, sweep_robust};
+    use sweepslide::geom::Triangle;
+    let v = |p: [f64; 3]| vec3::<f32>(p[0], p[1], p[2]);
+    let tri = Triangle::new(
+        v([-3.125e-6, 0.0, 0.0]),
+        v([0.0, -6.25e-6, -3.125e-6]),
+        v([0.0, 0.000_325_000_000_000_000_04, 0.000_328_125]),
+    );
+    let c = Candidate::lone(0, tri);
+    let base = v([-23_210.611_761_133_48, -6.249_997_476_259_071e-7, -23_210.611_758_633_48]);
+    let vel = v([45_919.526_388_496_98, -4.992_931_222_974_208e-13, 45_919.526_388_496_975]);
+    let hit = sweep_robust(&c, &base, &vel, &DetectOptions::default(), None);
+    assert!(hit.as_ref().is_none_or(|h| h.t > 0.5 && !h.started_overlapping), "{hit:?}");
+}
