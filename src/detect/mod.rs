@@ -15,7 +15,7 @@ pub use sphere_triangle::{Proximity, fauerby_point_in_triangle, proximity, sweep
 use sphere_triangle::{SweptBox, sweep_robust_with_speed};
 
 use crate::error::not_negative;
-use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, cross, is_finite, norm, norm_squared, normalize};
+use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, cross, is_finite, max_abs, norm, norm_squared, normalize};
 use crate::world::{ActiveFeatures, World};
 use crate::{Error, Real};
 use smallvec::SmallVec;
@@ -474,7 +474,7 @@ pub fn sweep_world<T: Real>(
 /// The largest absolute eSpace coordinate of world point `p`, in `f64`.
 #[must_use]
 pub fn espace_magnitude<T: Real>(body: &Ellipsoid<T>, p: &Vec3<T>) -> f64 {
-    body.to_espace(p).iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
+    max_abs(&body.to_espace(p), T::zero()).to_f64()
 }
 
 /// [`Error::InvalidArgument`] unless, measured in the body's radii, the

@@ -76,7 +76,9 @@
 
 use super::{Frame, StopReason};
 use crate::detect::{Candidate, DetectOptions, Detection, Hit, proximity};
-use crate::geom::{Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize};
+use crate::geom::{
+    Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, max_abs, norm, norm_squared, normalize,
+};
 use crate::{Error, Real};
 use smallvec::SmallVec;
 use std::borrow::Cow;
@@ -138,11 +140,6 @@ impl RobustOptions {
     }
 }
 
-/// The largest absolute coordinate of a vector, in `f64`.
-fn magnitude<T: Real>(v: &Vec3<T>) -> f64 {
-    v.iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
-}
-
 /// The padding for a contact on candidate `c` at position `p` (see the
 /// module docs): `s` is the larger of 1, the displacement and the distance
 /// from `p` to the triangle's nearest vertex, the magnitudes that the
@@ -156,6 +153,7 @@ fn magnitude<T: Real>(v: &Vec3<T>) -> f64 {
 fn padding<T: Real>(start_magnitude: f64, p: &Vec3<T>, w: &Vec3<T>, c: &Candidate<T>, opts: &RobustOptions) -> T {
     let u = T::unit_roundoff();
     let tri = &c.triangle;
+    let magnitude = |v: &Vec3<T>| max_abs(v, T::zero()).to_f64();
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
     let s = magnitude(w).max(nearest).max(1.0);
     // The tilt never exceeds the shape factor: most triangles need no more.

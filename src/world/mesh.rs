@@ -350,9 +350,13 @@ impl<T: Real> World<T> {
     /// slack.
     pub fn candidates_f64(&self, min: &Vector3<f64>, max: &Vector3<f64>, out: &mut Vec<u32>) {
         out.clear();
-        let lo = min.map(|x| (x - self.slack).next_down());
-        let hi = max.map(|x| (x + self.slack).next_up());
-        self.mesh.bvh.query(&Aabb { min: lo, max: hi }, None, |t| out.push(t));
+        self.mesh.bvh.query(&self.widened(min, max), None, |t| out.push(t));
+    }
+
+    /// The box `[min, max]` widened by the conversion slack and rounded
+    /// outward.
+    fn widened(&self, min: &Vector3<f64>, max: &Vector3<f64>) -> Aabb {
+        Aabb { min: min.map(|x| (x - self.slack).next_down()), max: max.map(|x| (x + self.slack).next_up()) }
     }
 
     /// Calls `visit` with each triangle [`World::candidates`] would return,
@@ -368,14 +372,14 @@ impl<T: Real> World<T> {
         ball: Option<(&Vec3<T>, &Vec3<T>, &T)>,
         visit: impl FnMut(u32),
     ) {
-        let lo = Vector3::from_fn(|i, _| (min[i].to_f64() - self.slack).next_down());
-        let hi = Vector3::from_fn(|i, _| (max[i].to_f64() + self.slack).next_up());
+        let to_f64 = |v: &Vec3<T>| Vector3::from_fn(|i, _| v[i].to_f64());
+        let bounds = self.widened(&to_f64(min), &to_f64(max));
         let ball = ball.map(|(centre, radii, radius)| {
             let centre = Vector3::from_fn(|i, _| centre[i].to_f64());
             let scale = Vector3::from_fn(|i, _| 1.0 / radii[i].to_f64());
             let off = self.slack + centre.amax() * f64::EPSILON;
             Ball { centre, scale, radius: radius.to_f64() + off * scale.max() }
         });
-        self.mesh.bvh.query(&Aabb { min: lo, max: hi }, ball.as_ref(), visit);
+        self.mesh.bvh.query(&bounds, ball.as_ref(), visit);
     }
 }
