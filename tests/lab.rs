@@ -7,7 +7,7 @@ use rug::Float;
 use std::process::Command;
 use std::sync::Arc;
 use sweepslide::geom::{Vec3, vec3};
-use sweepslide::lab::metrics::{EXACT_BITS, jitter, penetration, snag_ratio, triangle_distance_sq};
+use sweepslide::lab::metrics::{EXACT_BITS, jitter, penetrated, penetration, snag_ratio, triangle_distance_sq};
 use sweepslide::lab::{Precision, RunConfig, run};
 use sweepslide::respond::Response;
 use sweepslide::world::{TriangleMesh, World};
@@ -31,6 +31,43 @@ fn body_inside_a_plane_by_a_tenth_reports_a_tenth() {
     assert_eq!(pen, -(2f64.powi(-30)));
     // Nothing within reach.
     assert_eq!(penetration(&world, &vec3(1.0, 1.0, 1.0), &vec3(0.0, 1.5, 0.0)), None);
+}
+
+/// The triangles a body ends inside of, with their depths and whether the
+/// frame started behind each one's plane (the floor's front is +y).
+#[test]
+fn penetrated_lists_each_triangle_with_the_side_the_start_was_on() {
+    let world = floor();
+    let r = vec3(1.0, 1.0, 1.0);
+    let inside = vec3(0.5, 0.5, 5.0);
+    let sides = |start: Vec3<f64>| -> Vec<(u32, f64, bool)> {
+        penetrated(&world, &r, &start, &inside).iter().map(|p| (p.triangle, p.depth, p.start_behind)).collect()
+    };
+    assert_eq!(sides(vec3(0.5, 1.5, 5.0)), vec![(0, 0.5, false)]);
+    assert_eq!(sides(vec3(0.5, 0.0, 5.0)), vec![(0, 0.5, false)], "in the plane: not behind");
+    assert_eq!(sides(vec3(0.5, -0.5, 5.0)), vec![(0, 0.5, true)]);
+    assert!(penetrated(&world, &r, &vec3(0.5, -0.5, 5.0), &vec3(0.5, 1.5, 5.0)).is_empty(), "not inside");
+    // In eSpace: radii (1, 4, 1) reach 4 below the floor.
+    let tall = vec3(1.0, 4.0, 1.0);
+    let deep = penetrated(&world, &tall, &vec3(0.5, -5.0, 5.0), &vec3(0.5, -3.0, 5.0));
+    assert_eq!(deep.iter().map(|p| (p.triangle, p.depth, p.start_behind)).collect::<Vec<_>>(), vec![(0, 0.25, true)]);
+    // A wall at x = 2 facing -x beside the floor: a body that came up
+    // through the floor ends inside both, and only the floor was entered
+    // from behind.
+    let v = vec![
+        [-10.0, 0.0, -10.0],
+        [-10.0, 0.0, 10.0],
+        [10.0, 0.0, 10.0],
+        [2.0, -10.0, -10.0],
+        [2.0, 10.0, 10.0],
+        [2.0, -10.0, 10.0],
+    ];
+    let both = World::new(Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [3, 5, 4]]).unwrap())).unwrap();
+    let mut two = penetrated(&both, &r, &vec3(1.0, -0.5, 5.0), &vec3(1.2, 0.5, 5.0));
+    two.sort_by_key(|p| p.triangle);
+    assert_eq!((two[0].triangle, two[0].depth, two[0].start_behind), (0, 0.5, true));
+    assert_eq!((two[1].triangle, two[1].start_behind), (1, false));
+    assert!((two[1].depth - 0.2).abs() < 1e-15, "{:?}", two[1]);
 }
 
 /// A negative penetration is minus the clearance to the nearest triangle,
@@ -204,7 +241,7 @@ fn sweepslide(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_sweepslide")).args(args).output().expect("the CLI runs")
 }
 
-const CONTRACT: [&str; 14] = [
+const CONTRACT: [&str; 16] = [
     "scene",
     "response",
     "detection",
@@ -212,6 +249,8 @@ const CONTRACT: [&str; 14] = [
     "frames",
     "max_penetration",
     "penetrating_frames",
+    "back_face_frames",
+    "max_front_penetration",
     "jitter",
     "max_iterations",
     "mean_iterations",
@@ -324,7 +363,7 @@ fn trace_csv_has_one_row_per_frame() {
     assert!(out.status.success());
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(text.lines().count(), 13);
-    assert!(text.starts_with("frame,x,y,z,penetration,iterations,stop,flip"));
+    assert!(text.starts_with("frame,x,y,z,penetration,from_behind,iterations,stop,flip"));
 }
 
 #[test]
@@ -412,7 +451,14 @@ fn fuzz_found_scenes_reproduce_and_the_robust_response_passes_them() {
         let r = result(recorded, precision);
         match finding["kind"].as_str().unwrap() {
             "nan" => assert!(r.nan_frames > 0, "{}: {r:?}", path.display()),
-            _ => assert!(r.max_penetration > 0.0 && r.penetrating_frames > 0, "{}: {r:?}", path.display()),
+            _ => {
+                assert!(r.max_penetration > 0.0 && r.penetrating_frames > 0, "{}: {r:?}", path.display());
+                // Every one of these enters its triangles from behind, which
+                // Fauerby's one-sided detection passes by design: the
+                // report does not count them against the rounding claims.
+                assert_eq!(r.back_face_frames, r.penetrating_frames, "{}: {r:?}", path.display());
+                assert_eq!(r.counted_penetration(), (0, 0.0), "{}: {r:?}", path.display());
+            }
         }
         // Exactly as recorded: the failing frame ends where the fuzzer saw
         // it end, bit for bit (the case's decimals are read correctly

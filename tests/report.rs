@@ -143,6 +143,18 @@ fn quick_report_is_complete_and_self_contained() {
         }
     }
     assert!(html.contains("<svg"), "plots are inline");
+    // The verdicts the quick matrix pins (docs/findings.md): Fauerby's
+    // penetrations at 53 bits or more all enter from behind (the soup, the
+    // fuzz cases), so "only in f32" holds; the robust response never
+    // penetrates.
+    let verdict = |claim: &str| {
+        let row = &html[html.find(claim).unwrap_or_else(|| panic!("claim {claim:?} in the table"))..];
+        let row = &row[..row.find("</tr>").unwrap()];
+        row.contains(">reproduced<")
+    };
+    assert!(verdict("Fauerby's response lets the sphere penetrate"));
+    assert!(verdict("Fauerby penetrates only in f32, never in f64."));
+    assert!(verdict("The robust response never penetrates"));
     let cases = sweepslide::lab::scenes::cases_in(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz"));
     assert!(!cases.is_empty());
     let (info, entries) = matrix(true, &[], &cases);
@@ -160,6 +172,8 @@ fn quick_report_is_complete_and_self_contained() {
             "frames",
             "max_penetration",
             "penetrating_frames",
+            "back_face_frames",
+            "max_front_penetration",
             "jitter",
             "max_iterations",
             "mean_iterations",

@@ -208,11 +208,11 @@ per_backend! {
 
 /// Paper III.B (Fig. 2, 3): in the obtuse corner the second sliding plane
 /// pushes the body back out of the corner every other frame; it never
-/// settles. Observed (f32 and f64 alike): a 2-frame cycle between
-/// (0.4142, 1.0000) and (0.3892, 1.0250), steps of 0.0354 = 0.316 of the
-/// speed, jitter 0.3162 (ALGORITHMS.md section 8 reports ~0.1 and a 16-frame
-/// cycle for another implementation). In the crease (slid along) the
-/// jitter is 9.58e-3.
+/// settles. Observed (f32 and f64 alike, `sweepslide run --scene corner
+/// --response fauerby`): the body alternates between two positions that
+/// drift slowly, jitter 0.309 of the speed (ALGORITHMS.md section 8
+/// reports ~0.1 and a 16-frame cycle for another implementation). In the
+/// crease (slid along) the jitter is 1.05e-2.
 fn fauerby_jitters_in_obtuse_corner_and_crease<T: Real>() {
     let s = scene("corner");
     let r = simulate::<T>(&s, &MoveOptions::new(Response::Fauerby), s.frames);

@@ -262,13 +262,13 @@ fn warn_skipped(scene: &Scene, what: &str) {
 }
 
 fn write_trace(path: &std::path::Path, out: &RunOutput) -> Result<(), Error> {
-    let mut csv = String::from("frame,x,y,z,penetration,iterations,stop,flip\n");
+    let mut csv = String::from("frame,x,y,z,penetration,from_behind,iterations,stop,flip\n");
     for f in &out.frames {
         let pen = f.penetration.map_or(String::new(), |p| format!("{p:e}"));
         let stop = format!("{:?}", f.stop);
         csv += &format!(
-            "{},{:e},{:e},{:e},{},{},{},{}\n",
-            f.frame, f.position[0], f.position[1], f.position[2], pen, f.iterations, stop, f.flip
+            "{},{:e},{:e},{:e},{},{},{},{},{}\n",
+            f.frame, f.position[0], f.position[1], f.position[2], pen, f.from_behind, f.iterations, stop, f.flip
         );
     }
     std::fs::write(path, csv).map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })
@@ -322,6 +322,14 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
             r.penetrating_frames,
             r.first_penetrating_frame.map_or(String::new(), |f| format!(", first at frame {f}"))
         );
+        if r.back_face_frames > 0 {
+            out!(
+                "                {} of them entered from behind (every triangle it ends inside, from its back{}); max of the others {:.3e}",
+                r.back_face_frames,
+                if r.one_sided() { ": this one-sided detection passes them by design" } else { "" },
+                r.max_front_penetration
+            );
+        }
         out!("  jitter        {:.3e}", r.jitter);
         out!(
             "  iterations    max {}, mean {:.2}, {} frame(s) at the cap",

@@ -96,59 +96,132 @@ pub const PENETRATION_REACH: f64 = 0.05;
 /// `1 + PENETRATION_REACH` of the centre (eSpace: clear by more than
 /// that) or the position is not finite.
 ///
-/// Every triangle within that distance is examined: the box they must
-/// meet is computed in `f64` and rounded outward (in `T`, `position -
-/// radii` rounds to nearest, and far from the origin a box that rounds
-/// inward by half a unit in the last place, 0.004 at 1e5 in `f32`, could
-/// miss a triangle that a body has sunk into). Until the eighteenth
-/// session the box reached `1e-6` beyond the radius, and a negative
+/// Every triangle within that distance is examined (its box is rounded
+/// outward, in `f64`). Until the eighteenth session the box reached `1e-6` beyond the radius, and a negative
 /// value could come from a far triangle of a BVH leaf while a nearer one
 /// lay outside the box (a review found -7.05 where the clearance was
 /// 8.5e-6); positive values were exact.
 #[must_use]
 pub fn penetration<T: Real>(world: &World<T>, radii: &Vec3<T>, position: &Vec3<T>) -> Option<f64> {
-    if !position.iter().all(Real::is_finite) {
-        return None;
-    }
-    let centre = [0, 1, 2].map(|i| position[i].to_f64());
-    // The radii and centre as `f64` are rounded to nearest (for `MpfrDyn`
-    // and `Mpfr` beyond 53 bits): a relative `f64::EPSILON` covers them.
-    let half = |i: usize| {
-        radii[i].to_f64() * (1.0 + PENETRATION_REACH) * (1.0 + 4.0 * f64::EPSILON) + centre[i].abs() * f64::EPSILON
+    let near = Near::at(world, radii, position)?;
+    near.depth(near.triangles.iter().map(|(_, _, d2)| d2))
+}
+
+/// A triangle a body is inside of: exact eSpace distance from the centre
+/// below 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Penetrated {
+    /// The triangle's index in the world.
+    pub triangle: u32,
+    /// Its penetration, as [`penetration`] measures it.
+    pub depth: f64,
+    /// Whether the frame's start centre lay strictly behind the
+    /// triangle's plane: on the side opposite to `(b - a) x (c - a)`, the
+    /// side Fauerby's one-sided detection culls (in eSpace, the sign
+    /// computed at [`EXACT_BITS`] bits; `false` for a zero-area triangle,
+    /// which has no back).
+    pub start_behind: bool,
+}
+
+/// Every triangle a body that moved from `start` to `end` is inside of at
+/// `end` (empty when none, or when either is not finite).
+///
+/// Whether a body entered a triangle from behind is decided by the side
+/// its centre was on in the frame where it entered, not later: a body deep
+/// inside can carry its centre through the plane. The lab's runner keeps
+/// that side from frame to frame ([`crate::lab::RunResult::back_face_frames`]).
+#[must_use]
+pub fn penetrated<T: Real>(world: &World<T>, radii: &Vec3<T>, start: &Vec3<T>, end: &Vec3<T>) -> Vec<Penetrated> {
+    let Some(near) = Near::at(world, radii, end).filter(|_| start.iter().all(Real::is_finite)) else {
+        return Vec::new();
     };
-    let min = nalgebra::Vector3::from_fn(|i, _| (centre[i] - half(i)).next_down());
-    let max = nalgebra::Vector3::from_fn(|i, _| (centre[i] + half(i)).next_up());
-    let mut candidates = Vec::new();
-    world.candidates_f64(&min, &max, &mut candidates);
-    if candidates.is_empty() {
-        return None;
-    }
-    let r = exact(radii);
-    let to_e = |v: V| [0, 1, 2].map(|i| Float::with_val(EXACT_BITS, &v[i] / &r[i]));
-    let p = to_e(exact(position));
-    let mut best: Option<Float> = None;
-    for t in candidates {
-        let tri = world.triangle(t);
-        let [a, b, c] = [&tri.a, &tri.b, &tri.c].map(|v| to_e(exact(v)));
-        let d2 = triangle_distance_sq(&p, &a, &b, &c);
-        if best.as_ref().is_none_or(|b| d2 < *b) {
-            best = Some(d2);
+    let s = near.to_espace(start);
+    near.triangles
+        .iter()
+        .filter(|(_, _, d2)| *d2 < 1)
+        .map(|(t, [a, b, c], d2)| {
+            let side = dot(&cross(&sub(b, a), &sub(c, a)), &sub(&s, a));
+            Penetrated {
+                triangle: *t,
+                depth: near.depth(std::iter::once(d2)).unwrap_or(0.0),
+                start_behind: side.is_sign_negative() && !side.is_zero(),
+            }
+        })
+        .collect()
+}
+
+/// The triangles within reach of a body's centre, in eSpace at
+/// [`EXACT_BITS`] bits, with their squared distances to it.
+struct Near {
+    radii: V,
+    triangles: Vec<(u32, [V; 3], Float)>,
+}
+
+impl Near {
+    /// Every triangle within `1 + PENETRATION_REACH` (eSpace) of
+    /// `position`, and perhaps a few beyond; `None` when there is none or
+    /// the position is not finite.
+    ///
+    /// The box they must meet is computed in `f64` and rounded outward
+    /// (in `T`, `position - radii` rounds to nearest, and far from the
+    /// origin a box that rounds inward by half a unit in the last place,
+    /// 0.004 at 1e5 in `f32`, could miss a triangle that a body has sunk
+    /// into).
+    fn at<T: Real>(world: &World<T>, radii: &Vec3<T>, position: &Vec3<T>) -> Option<Near> {
+        if !position.iter().all(Real::is_finite) {
+            return None;
         }
+        let centre = [0, 1, 2].map(|i| position[i].to_f64());
+        // The radii and centre as `f64` are rounded to nearest (for `MpfrDyn`
+        // and `Mpfr` beyond 53 bits): a relative `f64::EPSILON` covers them.
+        let half = |i: usize| {
+            radii[i].to_f64() * (1.0 + PENETRATION_REACH) * (1.0 + 4.0 * f64::EPSILON) + centre[i].abs() * f64::EPSILON
+        };
+        let min = nalgebra::Vector3::from_fn(|i, _| (centre[i] - half(i)).next_down());
+        let max = nalgebra::Vector3::from_fn(|i, _| (centre[i] + half(i)).next_up());
+        let mut candidates = Vec::new();
+        world.candidates_f64(&min, &max, &mut candidates);
+        if candidates.is_empty() {
+            return None;
+        }
+        let mut near = Near { radii: exact(radii), triangles: Vec::with_capacity(candidates.len()) };
+        let p = near.to_espace(position);
+        for t in candidates {
+            let tri = world.triangle(t);
+            let corners = [&tri.a, &tri.b, &tri.c].map(|v| near.to_espace(v));
+            let d2 = triangle_distance_sq(&p, &corners[0], &corners[1], &corners[2]);
+            near.triangles.push((t, corners, d2));
+        }
+        Some(near)
     }
-    let d = best?.sqrt();
-    if d > 1.0 + PENETRATION_REACH {
-        return None;
+
+    /// The penetration for the least of the squared distances `d2`
+    /// (`None` when there is none or it lies beyond the reach).
+    fn depth<'a>(&self, d2: impl Iterator<Item = &'a Float>) -> Option<f64> {
+        let d = d2.min_by(|a, b| a.total_cmp(b))?.clone().sqrt();
+        if d > 1.0 + PENETRATION_REACH {
+            return None;
+        }
+        let pen = Float::with_val(EXACT_BITS, 1 - d);
+        let r = &self.radii;
+        let sphere = r[0] == r[1] && r[1] == r[2];
+        Some(if sphere { (pen * &r[0]).to_f64() } else { pen.to_f64() })
     }
-    let pen = Float::with_val(EXACT_BITS, 1 - d);
-    let sphere = r[0] == r[1] && r[1] == r[2];
-    Some(if sphere { (pen * &r[0]).to_f64() } else { pen.to_f64() })
+
+    fn to_espace<T: Real>(&self, v: &Vec3<T>) -> V {
+        let v = exact(v);
+        [0, 1, 2].map(|i| Float::with_val(EXACT_BITS, &v[i] / &self.radii[i]))
+    }
 }
 
 /// Jitter over the last `K = max(1, n / 4)` displacements `d_k` of the
 /// trajectory `positions` (frame 0 first): `(sum |d_k| - |sum d_k|) / (K
 /// speed)`. Zero for straight motion or rest, positive when the body
 /// wiggles. Displacements are taken exactly (512 bits) so that rounding of
-/// far-from-origin coordinates does not show up as jitter.
+/// far-from-origin coordinates does not show up as jitter. The exact value
+/// is never negative (the triangle inequality); the 512-bit difference of
+/// path and net can round a few units of `2^-512` of the path below zero
+/// for straight motion, and is clamped at zero.
 #[must_use]
 pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
     let n = positions.len().saturating_sub(1);
@@ -165,7 +238,7 @@ pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
     }
     let net = norm(&sub(&exact_tail[k], &exact_tail[0]));
     let j = Float::with_val(EXACT_BITS, path - net) / (k as f64 * speed);
-    j.to_f64()
+    j.to_f64().max(0.0)
 }
 
 /// The snag ratio: displacement achieved along the ideal slide direction

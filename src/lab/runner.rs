@@ -1,6 +1,6 @@
 //! Runs a scene with one response in one precision and measures it.
 
-use super::metrics::{jitter, penetration, snag_ratio};
+use super::metrics::{jitter, penetrated, penetration, snag_ratio};
 use super::scenes::{Scene, Steering};
 use crate::detect::Detection;
 use crate::geom::{Ellipsoid, Feature, Vec3, to_f64, vec3};
@@ -115,6 +115,17 @@ pub struct RunResult {
     pub penetrating_frames: usize,
     /// First frame (0-based) that ended inside the geometry.
     pub first_penetrating_frame: Option<usize>,
+    /// Penetrating frames that entered every triangle they end inside of
+    /// from behind (its centre behind the triangle's plane at the start of
+    /// the frame it entered it; [`super::metrics::penetrated`]): for
+    /// Fauerby's one-sided detection (and so the faithful responses) the
+    /// semantics of a triangle solid from the front only, not a failure;
+    /// for a two-sided detection, penetrations like any other.
+    pub back_face_frames: usize,
+    /// Largest exact penetration into a triangle not entered from behind
+    /// over the frames (0 if none).
+    #[serde(with = "super::json_float::number")]
+    pub max_front_penetration: f64,
     /// Jitter over the last quarter of the frames.
     #[serde(with = "super::json_float::number")]
     pub jitter: f64,
@@ -147,6 +158,28 @@ pub struct RunResult {
     pub ns_per_move: f64,
 }
 
+impl RunResult {
+    /// Whether the run's detection is one-sided (Fauerby's: it culls the
+    /// triangles whose front does not face the motion).
+    #[must_use]
+    pub fn one_sided(&self) -> bool {
+        self.detection == Detection::Fauerby.name()
+    }
+
+    /// The penetrating frames and the deepest penetration that count
+    /// against the run: for a one-sided detection those not entered from
+    /// behind (`back_face_frames` are its semantics), for a two-sided one
+    /// all of them.
+    #[must_use]
+    pub fn counted_penetration(&self) -> (usize, f64) {
+        if self.one_sided() {
+            (self.penetrating_frames - self.back_face_frames, self.max_front_penetration)
+        } else {
+            (self.penetrating_frames, self.max_penetration)
+        }
+    }
+}
+
 /// Per-frame values, kept for plots and `--trace`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FrameRecord {
@@ -158,6 +191,9 @@ pub struct FrameRecord {
     /// Exact penetration after the frame (`None`: nothing within reach).
     #[serde(with = "super::json_float::optional")]
     pub penetration: Option<f64>,
+    /// Whether the frame ended inside only triangles it entered from
+    /// behind (see [`RunResult::back_face_frames`]).
+    pub from_behind: bool,
     /// Collision checks this frame.
     pub iterations: u32,
     /// Why the frame's last pass stopped.
@@ -252,6 +288,10 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let mut records = Vec::with_capacity(frames);
     let (mut ns, mut iterations_sum, mut max_iterations) = (0u128, 0u64, 0u32);
     let (mut penetrating, mut first_pen, mut max_pen) = (0usize, None, 0.0f64);
+    let (mut back_face, mut max_front) = (0usize, 0.0f64);
+    // The triangles the body ended the last frame inside of, and whether it
+    // entered each from behind.
+    let mut inside: Vec<(u32, bool)> = Vec::new();
     let (mut capped, mut flips, mut plane_flips, mut nan_frames) = (0usize, 0usize, 0usize, 0usize);
     let mut moves = 0usize;
     for k in 0..frames {
@@ -278,15 +318,38 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         max_iterations = max_iterations.max(m.trace.iterations);
         capped += usize::from(is_capped(m.trace.stop));
         let pen = if finite { penetration(&world, body.radii(), &m.position) } else { None };
+        let mut from_behind = false;
         if let Some(d) = pen.filter(|d| *d > 0.0) {
             penetrating += 1;
             first_pen.get_or_insert(k);
             max_pen = max_pen.max(d);
+            // Each triangle keeps the side the body entered it from while
+            // the body stays inside it.
+            let now = penetrated(&world, body.radii(), &p, &m.position);
+            let entered: Vec<(u32, bool)> = now
+                .iter()
+                .map(|t| {
+                    let kept = inside.iter().find(|(i, _)| *i == t.triangle).map(|(_, behind)| *behind);
+                    (t.triangle, kept.unwrap_or(t.start_behind))
+                })
+                .collect();
+            let front = now.iter().zip(&entered).filter(|(_, (_, behind))| !behind).map(|(t, _)| t.depth);
+            match front.fold(None, |m: Option<f64>, d| Some(m.map_or(d, |m| m.max(d)))) {
+                None => {
+                    from_behind = true;
+                    back_face += 1;
+                }
+                Some(f) => max_front = max_front.max(f),
+            }
+            inside = entered;
+        } else {
+            inside.clear();
         }
         records.push(FrameRecord {
             frame: k,
             position: [0, 1, 2].map(|i| m.position[i].to_f64()),
             penetration: pen,
+            from_behind,
             iterations: m.trace.iterations,
             stop: m.trace.stop,
             flip,
@@ -317,6 +380,8 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         max_penetration: max_pen,
         penetrating_frames: penetrating,
         first_penetrating_frame: first_pen,
+        back_face_frames: back_face,
+        max_front_penetration: max_front,
         jitter: jitter(&positions, speed),
         max_iterations,
         mean_iterations: iterations_sum as f64 / moves.max(1) as f64,

@@ -148,8 +148,11 @@ pub fn search(seed: u64, trials: usize, jobs: usize) -> Result<Vec<Finding>, Err
         let mut found = |kind, value: f64| {
             findings.push(Finding { kind, value, result: r.clone(), command: command(t, cfg.response, cfg.precision) });
         };
-        if r.penetrating_frames > 0 {
-            found(FailureKind::Penetration, r.max_penetration);
+        // Not a frame that a one-sided detection passes by design (it
+        // ends inside only triangles it entered from behind).
+        let (penetrating, depth) = r.counted_penetration();
+        if penetrating > 0 {
+            found(FailureKind::Penetration, depth);
         }
         if r.nan_frames > 0 {
             found(FailureKind::Nan, r.nan_frames as f64);

@@ -23,9 +23,8 @@ fn sci(x: f64) -> String {
 /// one precision.
 fn summary_row(out: &mut String, response: &str, precision: &str, rs: &[&RunResult]) {
     let max = |f: &dyn Fn(&RunResult) -> f64| rs.iter().map(|r| f(r)).fold(0.0, f64::max);
-    let two_sided: Vec<&RunResult> = rs.iter().copied().filter(|r| !r.scene.starts_with("soup")).collect();
-    let pen = two_sided.iter().map(|r| r.max_penetration).fold(0.0, f64::max);
-    let pen_frames: usize = two_sided.iter().map(|r| r.penetrating_frames).sum();
+    let pen = rs.iter().map(|r| r.counted_penetration().1).fold(0.0, f64::max);
+    let pen_frames: usize = rs.iter().map(|r| r.counted_penetration().0).sum();
     let jitter = rs.iter().filter(|r| r.motion == "constant").map(|r| r.jitter).fold(0.0, f64::max);
     let sum = |f: &dyn Fn(&RunResult) -> usize| rs.iter().map(|r| f(r)).sum::<usize>();
     let snag = rs.iter().filter_map(|r| r.snag).fold(f64::INFINITY, f64::min);
@@ -71,9 +70,13 @@ fn run_table(out: &mut String, rs: &[&RunResult]) {
             r.response,
             r.precision,
             r.seed,
-            if r.max_penetration > 0.0 { "no" } else { "yes" },
+            if r.counted_penetration().0 > 0 { "no" } else { "yes" },
             sci(r.max_penetration),
-            r.penetrating_frames,
+            if r.back_face_frames > 0 {
+                format!("{} ({} from behind)", r.penetrating_frames, r.back_face_frames)
+            } else {
+                r.penetrating_frames.to_string()
+            },
             sci(r.jitter),
             r.max_iterations,
             r.capped_frames,
@@ -114,8 +117,8 @@ pub fn page(runs: &Runs, figures: &[Figure], elapsed_s: Option<f64>) -> String {
     if !failed.is_empty() {
         let _ = writeln!(out, "<p class=bad>{} runs failed: {}</p>", failed.len(), html_escape(&failed.join("; ")));
     }
-    out.push_str("<h2>Summary</h2><p>Aggregates over every scene of the main table, worst or total per response and precision. Penetration leaves out the <code>soup</code> scene, whose triangles face random directions: Fauerby's detection (kept by Linahan) is one-sided by design and passes back faces there; the next column includes it. Jitter counts the constant-push scenes only (a steered path bends, which the formula also scores). Time is the median of the runs' mean time per move.</p>\n");
-    out.push_str("<table><tr><th class=l>response</th><th class=l>precision</th><th>worst penetration</th><th>penetrating frames</th><th>incl. soup</th><th>worst jitter</th><th>max checks/frame</th><th>NaN frames</th><th>decision flips</th><th>plane flips</th><th>worst snag ratio</th><th>ns/move</th></tr>\n");
+    out.push_str("<h2>Summary</h2><p>Aggregates over every scene of the main table, worst or total per response and precision. Penetration is in world units for a sphere and in radii for an ellipsoid (the <code>room</code> scene and some fuzz cases). For Fauerby's detection (kept by Linahan's response), which is one-sided by design, it leaves out the frames that end inside only triangles they entered from behind (the body's centre behind each one's plane at the start of the frame it entered it); the next column counts every frame. Jitter counts the constant-push scenes only (a steered path bends, which the formula also scores). Time is the median of the runs' mean time per move.</p>\n");
+    out.push_str("<table><tr><th class=l>response</th><th class=l>precision</th><th>worst penetration</th><th>penetrating frames</th><th>incl. entered from behind</th><th>worst jitter</th><th>max checks/frame</th><th>NaN frames</th><th>decision flips</th><th>plane flips</th><th>worst snag ratio</th><th>ns/move</th></tr>\n");
     for resp in ["fauerby", "linahan", "robust"] {
         for prec in super::matrix::PRECISIONS {
             let p = prec.to_string();
@@ -148,7 +151,11 @@ pub fn page(runs: &Runs, figures: &[Figure], elapsed_s: Option<f64>) -> String {
     out.push_str("<h2>Scenes</h2>\n");
     for scene in scene_names(runs) {
         let base = scene.split([':', '@']).next().unwrap_or(&scene);
-        let description = BUILTIN.iter().find(|b| b.0 == base).map_or("mesh from an OBJ file", |b| b.2);
+        let description = match BUILTIN.iter().find(|b| b.0 == base) {
+            Some(b) => b.2,
+            None if base == "case" => "a fuzz case or finding (JSON)",
+            None => "mesh from an OBJ file",
+        };
         let _ = writeln!(out, "<h3 id=\"scene-{0}\">{0}</h3><p>{1}</p>", html_escape(&scene), html_escape(description));
         let rs: Vec<&RunResult> = main.iter().copied().filter(|r| r.scene == scene).collect();
         run_table(&mut out, &rs);

@@ -248,10 +248,13 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
         });
     }
     // Penetration over frames: the worst runs.
-    let mut worst: Vec<(&Record, &RunResult, &[FrameRecord])> =
-        main_runs(runs, "f32").chain(main_runs(runs, "f64")).filter(|(_, o, _)| o.penetrating_frames > 0).collect();
+    let mut worst: Vec<(&Record, &RunResult, &[FrameRecord])> = main_runs(runs, "f32")
+        .chain(main_runs(runs, "f64"))
+        .filter(|(_, o, _)| o.counted_penetration().0 > 0)
+        .collect();
     worst.sort_by(|a, b| {
-        b.1.max_penetration.total_cmp(&a.1.max_penetration).then(a.0.entry.index.cmp(&b.0.entry.index))
+        let depth = |o: &RunResult| o.counted_penetration().1;
+        depth(b.1).total_cmp(&depth(a.1)).then(a.0.entry.index.cmp(&b.0.entry.index))
     });
     let palette = [
         RGBColor(214, 39, 40),
@@ -268,7 +271,13 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
         .map(|((_, o, frames), colour)| Series {
             label: format!("{} {} {}", o.scene, o.response, o.precision),
             colour,
-            points: frames.iter().map(|f| (f.frame as f64, f.penetration.unwrap_or(0.0).max(0.0))).collect(),
+            points: frames
+                .iter()
+                .map(|f| {
+                    let counted = !(f.from_behind && o.one_sided());
+                    (f.frame as f64, if counted { f.penetration.unwrap_or(0.0).max(0.0) } else { 0.0 })
+                })
+                .collect(),
         })
         .collect();
     out.push(Figure {
@@ -277,7 +286,7 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
         caption: if series.is_empty() {
             "No run in f32 or f64 penetrated the geometry.".into()
         } else {
-            format!("Exact penetration (MPFR, 512 bits) after each frame for the {} most penetrating runs in f32/f64; non-penetrating frames are drawn at {LOG_FLOOR:.0e}.", series.len())
+            format!("Exact penetration (MPFR, 512 bits) after each frame for the {} most penetrating runs in f32/f64 (world units for a sphere, radii for an ellipsoid); frames that do not penetrate, and for Fauerby's one-sided detection frames that end inside only triangles entered from behind, are drawn at {LOG_FLOOR:.0e}.", series.len())
         },
         scene: None,
         svg: line_chart("Penetration over frames", "frame", "penetration", &series, true, false),
@@ -294,9 +303,11 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
                         .filter(|r| r.entry.group == Group::Dial && r.entry.response.name() == *resp)
                         .filter(|r| matches!(&r.entry.source, SceneSource::Builtin { spec, .. } if spec == base))
                         .filter_map(|r| {
-                            let o = r.outcome.as_ref().ok()?;
+                            // A run that reached NaN has neither metric (its
+                            // jitter and penetration stop at the NaN frame).
+                            let o = r.outcome.as_ref().ok().filter(|o| o.nan_frames == 0)?;
                             let bits: f64 = o.precision.trim_start_matches("mpfr").parse().ok()?;
-                            Some((bits, if pick == 0 { o.jitter } else { o.max_penetration }))
+                            Some((bits, if pick == 0 { o.jitter } else { o.counted_penetration().1 }))
                         })
                         .collect();
                     points.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -307,7 +318,7 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
                 name: format!("dial-{base}-{metric}"),
                 title: format!("Precision dial: {metric} in {base} against MPFR bits"),
                 caption: format!(
-                    "{metric} of each response in the {base} scene run in Mpfr<BITS>; zero is drawn at {LOG_FLOOR:.0e}."
+                    "{metric} of each response in the {base} scene run in Mpfr<BITS>; values below {LOG_FLOOR:.0e} (zero included) are drawn at it, and a precision whose run reached NaN has no point (the summary table counts its NaN frames)."
                 ),
                 scene: None,
                 svg: line_chart(
