@@ -369,6 +369,12 @@ pub fn move_body<T: Real>(
             Response::Robust => robust::slide(&mut frame, p, vel_e, &options.robust),
         };
     }
-    let position = if p == start { position.clone() } else { body.from_espace(&p) + &origin };
+    let position = if p == start {
+        position.clone()
+    } else if options.response == Response::Robust {
+        robust::land(&mut frame, &p, &origin, reach.radius.to_f64(), &options.robust)
+    } else {
+        body.from_espace(&p) + &origin
+    };
     Ok(Move { position, trace: frame.trace })
 }

@@ -70,6 +70,9 @@
 //! (which bounds the rounding of the final `start + displacement`). In `f32`
 //! at the origin that is about `3e-6`, in `f64` about `5e-15`, at `1e5` in
 //! `f32` the cap, `0.01` (the formula gives `0.024`; eSpace units).
+//! Where the cap takes over, the final world position's rounding can
+//! exceed `pad / 2`; the move then measures the rounded position again
+//! and restores the skin from there.
 //!
 //! A body that starts embedded is first pushed out along the separating
 //! direction of its deepest overlap (up to `depenetration_rounds` times).
@@ -430,9 +433,10 @@ const SKIN_ROUNDS: usize = 3;
 
 /// The push-out of [`settle`], given the scan's nearest triangle: while the
 /// nearest triangle is closer than `1 + pad / 2`, push out along its
-/// separating direction ([`push_out`]) and scan again, at most
+/// separating direction ([`skin_push`]) and scan again, at most
 /// [`SKIN_ROUNDS`] times; a push that cannot move the body (no room behind
 /// it) ends the rounds.
+#[inline]
 fn restore_skin<T: Real>(
     frame: &mut Frame<'_, T>,
     mut p: Vec3<T>,
@@ -441,19 +445,91 @@ fn restore_skin<T: Real>(
 ) -> Vec3<T> {
     for _ in 0..SKIN_ROUNDS {
         let Some(near) = nearest else { break };
-        let (gap, pad) = (near.dist - T::one(), near.pad);
-        if !(gap < pad.clone() * T::c(0.5)) {
-            break;
-        }
-        let Some(dir) = normalize(&(&p - &near.point)) else { break };
-        let pushed = push_out(frame, p.clone(), &dir, pad - &gap, &gap.max(T::zero()), opts);
-        if pushed == p {
-            break;
-        }
+        let Some(pushed) = skin_push(frame, &p, &near, None, opts) else { break };
         p = pushed;
         nearest = scan_resting(frame, &p, opts);
     }
     p
+}
+
+/// One push of the skin: if the nearest triangle `near` is closer than
+/// `1 + pad / 2`, the body pushed out along its separating direction
+/// ([`push_out`]) to `1 + pad`, plus `extra` if given (or as far as the
+/// room behind it allows); `None` if it is not that close or cannot move.
+#[inline(always)]
+fn skin_push<T: Real>(
+    frame: &Frame<'_, T>,
+    p: &Vec3<T>,
+    near: &Nearest<T>,
+    extra: Option<&T>,
+    opts: &RobustOptions,
+) -> Option<Vec3<T>> {
+    let gap = near.dist.clone() - T::one();
+    if !(gap < near.pad.clone() * T::c(0.5)) {
+        return None;
+    }
+    let dir = normalize(&(p - &near.point))?;
+    let mut want = near.pad.clone() - &gap;
+    if let Some(extra) = extra {
+        want += extra.clone();
+    }
+    let pushed = push_out(frame, p.clone(), &dir, want, &gap.max(T::zero()), opts);
+    (pushed != *p).then_some(pushed)
+}
+
+/// The world position of the eSpace position `p` (relative to the frame's
+/// `origin`), with the skin checked after its final rounding when that
+/// rounding could undo it.
+///
+/// `from_espace(p) + origin` rounds each world coordinate `x_i` by up to
+/// `u |x_i|` (and the product `r_i p_i` by `u r_i |p_i|`): in eSpace at most
+/// `R = sqrt(3) u (m + 2 |p|)` for a start of eSpace magnitude `m`, and the
+/// position measured back from the rounded point (its difference to the
+/// origin is exact by Sterbenz's lemma for a move within a factor two of
+/// the origin's coordinates, then one product: `2u |p|`) is within `u |p|`
+/// more. While the padding is not capped its `position_ulps * u * m` term
+/// keeps a resting body `2 u m` or more clear, beyond that rounding. Capped
+/// (`max_padding`, in `f32` from about `4e4` radii from the origin on), a
+/// body resting at the band's lower edge `pad / 2` could be carried into
+/// the wall by the rounding: so when `R >= max_padding / 2` the rounded
+/// position is measured again and, if it lies closer than `1 + pad / 2`,
+/// pushed out to `1 + pad + R` ([`skin_push`]) and rounded again, at most
+/// [`SKIN_ROUNDS`] times. `|p|` is bounded by `reach`, the frame's reach
+/// radius (eSpace), plus the depenetration pushes, and `R` takes three
+/// times that for the `2 |p|` and the `|p|` above. Below that magnitude
+/// the check costs one comparison.
+#[inline(always)]
+pub(crate) fn land<T: Real>(
+    frame: &mut Frame<'_, T>,
+    p: &Vec3<T>,
+    origin: &Vec3<T>,
+    reach: f64,
+    opts: &RobustOptions,
+) -> Vec3<T> {
+    let world = frame.body.from_espace(p) + origin;
+    let rounding =
+        3f64.sqrt() * T::unit_roundoff() * (frame.start_magnitude + 3.0 * (reach + frame.trace.depenetration));
+    if rounding < 0.5 * opts.max_padding { world } else { land_checked(frame, world, origin, rounding, opts) }
+}
+
+/// [`land`] where the rounding `R` could undo the skin.
+#[cold]
+fn land_checked<T: Real>(
+    frame: &mut Frame<'_, T>,
+    mut world: Vec3<T>,
+    origin: &Vec3<T>,
+    rounding: f64,
+    opts: &RobustOptions,
+) -> Vec3<T> {
+    let body = frame.body;
+    let extra = T::c(rounding);
+    for _ in 0..SKIN_ROUNDS {
+        let q = body.to_espace(&(&world - origin));
+        let Some(near) = scan_resting(frame, &q, opts) else { break };
+        let Some(pushed) = skin_push(frame, &q, &near, Some(&extra), opts) else { break };
+        world = body.from_espace(&pushed) + origin;
+    }
+    world
 }
 
 /// The triangle nearest a position, from [`scan_resting`].

@@ -183,3 +183,78 @@ fn linahan_f32_fails_far_from_origin() {
     assert!(r.max_penetration() > 0.0, "{}: deepest {:e}", r.name, r.max_penetration());
     assert!(r.penetrating_frames() > 100, "{}: {} frames", r.name, r.penetrating_frames());
 }
+
+/// A robust `f32` move far from the origin whose last sweep is free: the
+/// body rests in the skin band above the plane `x + y = 2e5` (padding
+/// capped at 0.01), and rounding the final world position (spacing 2^-7
+/// there, up to 0.0068 radii of shift along this diagonal normal) carried
+/// it 1.07e-4 radii inside (a review in the nineteenth session). The
+/// rounded position is now measured again and pushed out
+/// (`respond::robust`, `land`).
+#[test]
+fn robust_f32_final_rounding_does_not_sink_into_a_diagonal_plane() {
+    let vertices = vec![
+        [99700.0, 100300.0, 99700.0],
+        [100300.0, 99700.0, 99700.0],
+        [100300.0, 99700.0, 100300.0],
+        [99700.0, 100300.0, 100300.0],
+    ];
+    let mesh = sweepslide::world::TriangleMesh::new(vertices, vec![[0, 1, 2], [0, 2, 3]]).unwrap();
+    let world = World::<f32>::new(std::sync::Arc::new(mesh)).unwrap();
+    let body = Ellipsoid::<f32>::sphere(1.0).unwrap();
+    let start: Vec3<f32> = v([100002.484375, 99999.0078125, 99998.640625]);
+    let velocity: Vec3<f32> = Vec3::new(-7.0113005e-5, 8.7787936e-5, 6.4355496e-5);
+    let gravity: Vec3<f32> = Vec3::new(-0.03535534, -0.03535534, 0.0);
+    let m = move_body(&world, &body, &start, &velocity, Some(&gravity), &MoveOptions::new(Response::Robust)).unwrap();
+    let pen = penetration(&world, body.radii(), &m.position).unwrap();
+    assert!(pen <= 0.0, "inside by {pen:e} at {:?}", f64s(&m.position));
+}
+
+/// Robust `f32` in a 120 degree trough at (1e5, 1e5, -1e5), with an
+/// ellipsoid of radii (0.5, 0.5, 20) and a sphere, random pushes of 0.001
+/// to 3 radii plus gravity, 200 frames per seed: never inside. Before the
+/// final position was checked after its rounding, the ellipsoid ended
+/// inside (by up to 1.5e-3 radii) in several seeds.
+#[test]
+fn robust_f32_far_trough_never_penetrates_after_rounding() {
+    let offset = [1e5, 1e5, -1e5];
+    for radii in [[0.5, 0.5, 20.0], [1.0, 1.0, 1.0]] {
+        let scale = radii.iter().fold(0.0f64, |a, b| a.max(*b));
+        let half = 60f64.to_radians();
+        let mut vertices = Vec::new();
+        let mut triangles = Vec::new();
+        for side in [-1.0f64, 1.0] {
+            let (dx, dy) = (side * half.sin() * 200.0, half.cos() * 200.0);
+            let b = vertices.len() as u32;
+            for [x, y, z] in [[0.0, 0.0, -200.0], [0.0, 0.0, 200.0], [dx, dy, 200.0], [dx, dy, -200.0]] {
+                vertices.push([x * scale + offset[0], y * scale + offset[1], z * scale + offset[2]]);
+            }
+            triangles.extend(if side > 0.0 {
+                [[b, b + 1, b + 2], [b, b + 2, b + 3]]
+            } else {
+                [[b, b + 2, b + 1], [b, b + 3, b + 2]]
+            });
+        }
+        let mesh = sweepslide::world::TriangleMesh::new(vertices, triangles).unwrap();
+        let world = World::<f32>::new(std::sync::Arc::new(mesh)).unwrap();
+        let body = Ellipsoid::<f32>::new(radii).unwrap();
+        let options = MoveOptions::new(Response::Robust);
+        for seed in 0..6u64 {
+            let mut rng = sweepslide::lab::rng::Rng::new(seed);
+            let mut p: Vec3<f32> = v([offset[0], offset[1] + 6.0 * scale / half.sin(), offset[2]]);
+            let gravity: Vec3<f32> = v([0.0, -0.2 * scale, 0.0]);
+            for frame in 0..200 {
+                let s = [0.001, 0.05, 0.5, 3.0][(rng.unit() * 4.0) as usize] * scale;
+                let push = [(rng.unit() - 0.5) * s, (rng.unit() - 0.7) * s, (rng.unit() - 0.5) * s];
+                let m = move_body(&world, &body, &p, &v(push), Some(&gravity), &options).unwrap();
+                let pen = penetration(&world, body.radii(), &m.position);
+                assert!(
+                    pen.is_none_or(|d| d <= 0.0),
+                    "radii {radii:?} seed {seed} frame {frame}: inside by {pen:?} from {:?} pushed {push:?}",
+                    f64s(&p)
+                );
+                p = m.position;
+            }
+        }
+    }
+}
