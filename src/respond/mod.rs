@@ -183,8 +183,9 @@ pub struct Trace<T: Real> {
     pub contacts: SmallVec<[Contact<T>; 4]>,
     /// Why the last pass stopped.
     pub stop: StopReason,
-    /// How far (eSpace) the robust response pushed the body out of geometry
-    /// it started embedded in (zero when it did not).
+    /// The total length (eSpace) of the pushes with which the robust
+    /// response moved the body out of geometry it started embedded in
+    /// (zero when it did not); the body's net displacement can be shorter.
     pub depenetration: f64,
 }
 
