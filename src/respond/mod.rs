@@ -300,9 +300,11 @@ fn check_precision<T: Real>(what: &str, v: &Vec3<T>) -> Result<(), Error> {
 /// ([`MoveOptions::validate`]); [`Error::NonFinite`] if the position,
 /// velocity or gravity has a NaN or
 /// infinite coordinate; [`Error::InvalidArgument`] if, measured in the
-/// body's radii (eSpace), the position or the displacements' length is not
-/// representable in `T` (their squares overflow: beyond about `1.8e19`
-/// radii in `f32`, `1.3e154` in `f64`), if a triangle within reach is too
+/// body's radii (eSpace), the displacements' length is not representable
+/// in `T` (its square overflows: beyond about `1.8e19` radii in `f32`,
+/// `1.3e154` in `f64`) or a coordinate of the position is not (beyond
+/// `T`'s largest value; the robust response works relative to the start,
+/// so a position that large is usable), if a triangle within reach is too
 /// long for `T` ([`Neighbourhood::gather`]), or if an [`crate::MpfrDyn`]
 /// input (position, velocity, gravity, the body's radii or the world's
 /// vertices) was made at another precision than the thread's

@@ -699,10 +699,14 @@ const DEPENETRATION_LIMITS: usize = 8;
 /// shortest one is the answer. A candidate `d = sum a_i n_i` is computed
 /// with an error of a few `u sum |a_i|` (large for nearly parallel
 /// limits: in a 2 degree wedge `a_i` is 800 times the overlap), so a limit
-/// counts as satisfied up to `feasible_ulps * u * (max |need| + sum |a_i|)`.
+/// counts as satisfied up to `feasible_ulps * u * (max |need| + sum |a_i|)`,
+/// relative to the push, not to the body's radius: the needs are a padding
+/// or an overlap, and a tolerance of `u` radii would exceed the padding (a
+/// fuzz input in `f32` found a push towards the floor by `6e-7` radii
+/// passing for one `3e-6` away from it).
 fn least_push<T: Real>(limits: &[(T, Vec3<T>)], opts: &RobustOptions) -> Option<Vec3<T>> {
     let u = T::c(opts.feasible_ulps * T::unit_roundoff());
-    let scale = limits.iter().fold(T::one(), |m, (need, _)| m.max(need.abs()));
+    let scale = limits.iter().fold(T::zero(), |m, (need, _)| m.max(need.abs()));
     let min_sin2 = T::c((opts.parallel_ulps * T::unit_roundoff()).powi(2));
     let mut best: Option<(T, Vec3<T>)> = None;
     let mut consider = |d: Vec3<T>, weight: T| {

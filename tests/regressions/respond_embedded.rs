@@ -358,3 +358,35 @@ fn robust_pushes_out_from_under_a_ledge_f32() {
 fn robust_pushes_out_from_under_a_ledge_f64() {
     out_from_under_a_ledge::<f64>();
 }
+
+/// Fuzz input `fuzz/regressions/move_robust/depenetration-tolerance-below-floor-f32`:
+/// a sphere of radius 8058 touching a floor of eight triangles from below,
+/// still, in `f32`. The first version of the shortest-push depenetration
+/// judged its limits to within `u` radii, more than the padding, and took a
+/// push of 6e-7 radii towards the floor (a nearby triangle's limit alone)
+/// for one 3e-6 away from it: the body ended 6e-7 radii inside.
+#[test]
+fn robust_still_body_below_a_floor_is_not_pushed_into_it_f32() {
+    let (a, b) = (8058.421877614818, -10.75);
+    let c = -8069.171877614818;
+    let e = 8047.671877614818;
+    let triangles = [
+        [[b, b, -a], [c, b, 0.0], [b, b, 0.0]],
+        [[b, b, -a], [c, b, -a], [c, b, 0.0]],
+        [[b, b, 0.0], [c, b, a], [b, b, a]],
+        [[b, b, 0.0], [c, b, 0.0], [c, b, a]],
+        [[e, b, -a], [b, b, 0.0], [e, b, 0.0]],
+        [[e, b, -a], [b, b, -a], [b, b, 0.0]],
+        [[b, b, 0.0], [e, b, a], [e, b, 0.0]],
+        [[b, b, 0.0], [b, b, a], [e, b, a]],
+    ];
+    let vertices: Vec<[f64; 3]> = triangles.iter().flatten().copied().collect();
+    let indices = (0..8u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    let mesh = sweepslide::world::TriangleMesh::new(vertices, indices).unwrap();
+    let world = World::<f32>::new(std::sync::Arc::new(mesh)).unwrap();
+    let body = Ellipsoid::<f32>::sphere(a).unwrap();
+    let start = v::<f32>([b, c, -8026.943186828683]);
+    let m = move_body(&world, &body, &start, &v([0.0; 3]), None, &MoveOptions::new(Response::Robust)).unwrap();
+    let pen = penetration(&world, body.radii(), &m.position).unwrap();
+    assert!(pen <= 0.0, "{pen:e} inside at {:?}", f64s(&m.position));
+}
