@@ -241,7 +241,7 @@ fn sweepslide(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_sweepslide")).args(args).output().expect("the CLI runs")
 }
 
-const CONTRACT: [&str; 16] = [
+const CONTRACT: [&str; 17] = [
     "scene",
     "response",
     "detection",
@@ -253,6 +253,7 @@ const CONTRACT: [&str; 16] = [
     "max_front_penetration",
     "jitter",
     "max_iterations",
+    "max_pass_iterations",
     "mean_iterations",
     "nan_frames",
     "decision_flips",

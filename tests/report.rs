@@ -176,6 +176,7 @@ fn quick_report_is_complete_and_self_contained() {
             "max_front_penetration",
             "jitter",
             "max_iterations",
+            "max_pass_iterations",
             "mean_iterations",
             "nan_frames",
             "decision_flips",

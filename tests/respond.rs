@@ -298,8 +298,22 @@ fn linahan_at_most_three_checks_per_pass<T: Real>() {
         assert!(r.all_finite(), "{}", r.name);
         for (k, t) in r.traces.iter().enumerate() {
             assert!(t.iterations <= 3, "{}: frame {k}: {} checks", r.name, t.iterations);
+            assert_eq!(t.pass_iterations, t.iterations, "{}: frame {k}: one pass", r.name);
             assert!(t.contacts.len() <= 3, "{}: frame {k}: {} contacts", r.name, t.contacts.len());
             assert!(matches!(t.stop, StopReason::Free | StopReason::ThirdPlane), "{}: frame {k}: {:?}", r.name, t.stop);
+        }
+        // With gravity, a second pass: each of the two within three checks.
+        let mut heavy = s.clone();
+        heavy.gravity = [0.0, -0.05, 0.0];
+        let r = simulate::<T>(&heavy, &MoveOptions::new(Response::Linahan), heavy.frames);
+        for (k, t) in r.traces.iter().enumerate().filter(|_| r.all_finite()) {
+            assert!(
+                t.pass_iterations <= 3,
+                "{} with gravity: frame {k}: {} checks in a pass",
+                r.name,
+                t.pass_iterations
+            );
+            assert!(t.iterations <= 2 * t.pass_iterations, "{} with gravity: frame {k}", r.name);
         }
     }
 }

@@ -332,8 +332,9 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         }
         out!("  jitter        {:.3e}", r.jitter);
         out!(
-            "  iterations    max {}, mean {:.2}, {} frame(s) at the cap",
+            "  iterations    max {} per frame ({} per pass), mean {:.2}, {} frame(s) at the cap",
             r.max_iterations,
+            r.max_pass_iterations,
             r.mean_iterations,
             r.capped_frames
         );

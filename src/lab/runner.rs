@@ -131,6 +131,9 @@ pub struct RunResult {
     pub jitter: f64,
     /// Largest number of collision checks in one frame (the freeze metric).
     pub max_iterations: u32,
+    /// Largest number of collision checks in one pass of a frame (the
+    /// velocity's or the gravity's).
+    pub max_pass_iterations: u32,
     /// Mean collision checks per frame.
     pub mean_iterations: f64,
     /// Frames that stopped at the response's cap (Fauerby's depth cap,
@@ -286,7 +289,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let mut p = start.clone();
     let mut positions = vec![p.clone()];
     let mut records = Vec::with_capacity(frames);
-    let (mut ns, mut iterations_sum, mut max_iterations) = (0u128, 0u64, 0u32);
+    let (mut ns, mut iterations_sum, mut max_iterations, mut max_pass) = (0u128, 0u64, 0u32, 0u32);
     let (mut penetrating, mut first_pen, mut max_pen) = (0usize, None, 0.0f64);
     let (mut back_face, mut max_front) = (0usize, 0.0f64);
     // The triangles the body ended the last frame inside of, and whether it
@@ -316,6 +319,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         plane_flips += usize::from(planes_differ(&m, &replay));
         iterations_sum += u64::from(m.trace.iterations);
         max_iterations = max_iterations.max(m.trace.iterations);
+        max_pass = max_pass.max(m.trace.pass_iterations);
         capped += usize::from(is_capped(m.trace.stop));
         let pen = if finite { penetration(&world, body.radii(), &m.position) } else { None };
         let mut from_behind = false;
@@ -384,6 +388,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         max_front_penetration: max_front,
         jitter: jitter(&positions, speed),
         max_iterations,
+        max_pass_iterations: max_pass,
         mean_iterations: iterations_sum as f64 / moves.max(1) as f64,
         capped_frames: capped,
         nan_frames,

@@ -163,14 +163,20 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
             .collect::<Vec<_>>()
             .join("; "),
     });
-    let over: Vec<&RunResult> = of("linahan").filter(|r| r.max_iterations > 6).collect();
+    let over: Vec<&RunResult> = of("linahan").filter(|r| r.max_pass_iterations > 3).collect();
     claims.push(Claim {
         source: "Linahan 2012, III.G",
         text: "Linahan's response needs at most three collision checks per pass.",
         reproduced: over.is_empty(),
         evidence: format!(
-            "largest count per frame {} (two passes when the scene has gravity)",
-            of("linahan").map(|r| r.max_iterations).max().unwrap_or(0)
+            "largest count per pass {} (per frame {}: two passes when the scene has gravity){}",
+            of("linahan").map(|r| r.max_pass_iterations).max().unwrap_or(0),
+            of("linahan").map(|r| r.max_iterations).max().unwrap_or(0),
+            if over.is_empty() {
+                String::new()
+            } else {
+                format!("; more in {}", over.iter().map(|r| describe(r)).collect::<Vec<_>>().join(", "))
+            }
         ),
     });
     let snags: Vec<&RunResult> = of("linahan").filter(|r| r.snag.is_some_and(|s| s < SNAG_THRESHOLD)).collect();

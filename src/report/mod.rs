@@ -154,7 +154,7 @@ pub fn render(dir: &Path, runs: &Runs, elapsed_s: Option<f64>) -> Result<Vec<Pat
 
 fn csv(lines: &[ResultLine<'_>]) -> String {
     let mut out = String::from(
-        "index,group,scene,response,detection,precision,seed,frames,max_penetration,penetrating_frames,back_face_frames,max_front_penetration,jitter,max_iterations,mean_iterations,capped_frames,nan_frames,decision_flips,plane_flips,snag,final_x,final_y,final_z,ns_per_move\n",
+        "index,group,scene,response,detection,precision,seed,frames,max_penetration,penetrating_frames,back_face_frames,max_front_penetration,jitter,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,decision_flips,plane_flips,snag,final_x,final_y,final_z,ns_per_move\n",
     );
     for l in lines {
         let r = l.result;
@@ -165,7 +165,7 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
         let snag = r.snag.map_or(String::new(), |s| format!("{s:e}"));
         let [x, y, z] = r.final_position;
         out += &format!(
-            "{},{group},\"{}\",{},{},{},{},{},{:e},{},{},{:e},{:e},{},{},{},{},{},{},{snag},{x:e},{y:e},{z:e},{:.1}\n",
+            "{},{group},\"{}\",{},{},{},{},{},{:e},{},{},{:e},{:e},{},{},{},{},{},{},{},{snag},{x:e},{y:e},{z:e},{:.1}\n",
             l.index,
             r.scene,
             r.response,
@@ -179,6 +179,7 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
             r.max_front_penetration,
             r.jitter,
             r.max_iterations,
+            r.max_pass_iterations,
             r.mean_iterations,
             r.capped_frames,
             r.nan_frames,

@@ -178,6 +178,9 @@ pub struct Contact<T: Real> {
 pub struct Trace<T: Real> {
     /// Collision checks run (calls to the world query), all passes together.
     pub iterations: u32,
+    /// The most collision checks of one pass (the velocity's or the
+    /// gravity's).
+    pub pass_iterations: u32,
     /// The contacts met, in order (the first four stored inline: a move
     /// that meets no more allocates nothing).
     pub contacts: SmallVec<[Contact<T>; 4]>,
@@ -336,7 +339,13 @@ pub fn move_body<T: Real>(
         Response::Fauerby | Response::Linahan => Vec3::zeros(),
     };
     let reach = Reach::of_frame(body, position, &[velocity, gravity]);
-    let trace = Trace { iterations: 0, contacts: SmallVec::new(), stop: StopReason::ZeroVelocity, depenetration: 0.0 };
+    let trace = Trace {
+        iterations: 0,
+        pass_iterations: 0,
+        contacts: SmallVec::new(),
+        stop: StopReason::ZeroVelocity,
+        depenetration: 0.0,
+    };
     let moves = [velocity.clone(), gravity.clone()];
     let start_magnitude = espace_magnitude(body, position);
     check_in_radii(start_magnitude, &reach)?;
@@ -366,11 +375,13 @@ pub fn move_body<T: Real>(
             continue;
         }
         let vel_e = body.to_espace(vel);
+        let before = frame.trace.iterations;
         p = match options.response {
             Response::Fauerby => fauerby::collide_and_slide(&mut frame, p, vel_e, &options.fauerby),
             Response::Linahan => linahan::sphere_sweep(&mut frame, p, vel_e, &options.linahan),
             Response::Robust => robust::slide(&mut frame, p, vel_e, &options.robust),
         };
+        frame.trace.pass_iterations = frame.trace.pass_iterations.max(frame.trace.iterations - before);
     }
     let position = if p == start {
         position.clone()
