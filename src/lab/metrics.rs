@@ -116,10 +116,16 @@ pub struct Penetrated {
     /// Its penetration, as [`penetration`] measures it.
     pub depth: f64,
     /// Whether the frame's start centre lay strictly behind the
-    /// triangle's plane: on the side opposite to `(b - a) x (c - a)`, the
-    /// side Fauerby's one-sided detection culls (in eSpace, the sign
-    /// computed at [`EXACT_BITS`] bits; `false` for a zero-area triangle,
-    /// which has no back).
+    /// triangle's plane: on the side opposite to `(b - a) x (c - a)` (in
+    /// eSpace, the sign computed at [`EXACT_BITS`] bits; `false` for a
+    /// zero-area triangle, which has no back). Fauerby's one-sided
+    /// detection culls a triangle by the direction of motion instead (a
+    /// motion along its front normal); a body behind a plane that comes
+    /// to the triangle moves along that normal, so what this side marks is
+    /// culled there too, though the converse need not hold (a body in
+    /// front that moves away from the plane and reaches the triangle over
+    /// an edge is culled but marked as a front entry, counted against the
+    /// response).
     pub start_behind: bool,
 }
 

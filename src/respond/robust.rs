@@ -61,8 +61,8 @@
 //! Padding: `pad = padding_ulps * u * s * max(1, g / free_tilt) + position_ulps * u * |start|`,
 //! capped at `max_padding`, where `u` is the unit roundoff, `s` the
 //! magnitude of the relative coordinates the contact was computed from (the
-//! distance to the triangle's nearest vertex and the displacement, at least
-//! one), `g` the tilt factor of the triangle's unit normal
+//! distance to the triangle's nearest vertex, the displacement and the
+//! position relative to the frame's start, at least one), `g` the tilt factor of the triangle's unit normal
 //! ([`Candidate::tilt`]: `1 / sin` of its largest angle, so a flat cap's
 //! distance is off by about `u g s`; `g <= 2` for any triangle whose
 //! largest angle is at most 150 degrees) and `|start|` the largest eSpace
@@ -114,7 +114,9 @@ pub struct RobustOptions {
     /// A displacement counts as admissible for a plane when
     /// `v . n >= -feasible_ulps * u * |v|` (default 64).
     pub feasible_ulps: f64,
-    /// Push-out rounds for a body that starts embedded (default 4).
+    /// Push-out rounds for a body that starts embedded (default 8; each
+    /// moves it at most about one radius, and a body that does not overlap
+    /// anything costs one scan).
     pub depenetration_rounds: u32,
 }
 
@@ -128,7 +130,7 @@ impl Default for RobustOptions {
             max_padding: 0.01,
             parallel_ulps: 1024.0,
             feasible_ulps: 64.0,
-            depenetration_rounds: 4,
+            depenetration_rounds: 8,
         }
     }
 }
@@ -145,9 +147,14 @@ impl RobustOptions {
 }
 
 /// The padding for a contact on candidate `c` at position `p` (see the
-/// module docs): `s` is the larger of 1, the displacement and the distance
-/// from `p` to the triangle's nearest vertex, the magnitudes that the
-/// contact's distance was computed from; a flat cap's padding is multiplied
+/// module docs): `s` is the largest of 1, the displacement, the distance
+/// from `p` to the triangle's nearest vertex and `|p|`, the magnitudes that
+/// the contact's distance was computed from (`p` and the triangle's
+/// coordinates are relative to the frame's start, each rounded by about
+/// `u` times its magnitude: a body that travels far in one frame meets
+/// triangles whose relative coordinates are that far from zero; without
+/// `|p|` a review found one that moved 84 radii in a frame, in `f32`,
+/// resting 2.7e-6 radii inside a ramp); a flat cap's padding is multiplied
 /// by its normal's tilt factor over `free_tilt`
 /// ([`RobustOptions::tilt_factor`]), because its unit normal's direction
 /// carries errors of a few `u` times that factor, so the distance to its
@@ -159,7 +166,7 @@ fn padding<T: Real>(start_magnitude: f64, p: &Vec3<T>, w: &Vec3<T>, c: &Candidat
     let tri = &c.triangle;
     let magnitude = |v: &Vec3<T>| max_abs(v, T::zero()).to_f64();
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
-    let s = magnitude(w).max(nearest).max(1.0);
+    let s = magnitude(w).max(nearest).max(magnitude(p)).max(1.0);
     // The tilt never exceeds the shape factor: most triangles need no more.
     let tilt = if c.shape.to_f64() <= opts.free_tilt { 1.0 } else { opts.tilt_factor(c.tilt()) };
     T::c((opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
@@ -434,10 +441,9 @@ const SKIN_ROUNDS: usize = 3;
 
 /// The push-out of [`settle`], given the scan's nearest triangle: while the
 /// nearest triangle is closer than `1 + pad / 2`, push out along its
-/// separating direction ([`skin_push`]) and scan again, at most
+/// separating direction ([`push_out`]) and scan again, at most
 /// [`SKIN_ROUNDS`] times; a push that cannot move the body (no room behind
 /// it) ends the rounds.
-#[inline]
 fn restore_skin<T: Real>(
     frame: &mut Frame<'_, T>,
     mut p: Vec3<T>,
@@ -446,36 +452,19 @@ fn restore_skin<T: Real>(
 ) -> Vec3<T> {
     for _ in 0..SKIN_ROUNDS {
         let Some(near) = nearest else { break };
-        let Some(pushed) = skin_push(frame, &p, &near, None, opts) else { break };
+        let (gap, pad) = (near.dist - T::one(), near.pad);
+        if !(gap < pad.clone() * T::c(0.5)) {
+            break;
+        }
+        let Some(dir) = normalize(&(&p - &near.point)) else { break };
+        let pushed = push_out(frame, p.clone(), &dir, pad - &gap, &gap.max(T::zero()), opts);
+        if pushed == p {
+            break;
+        }
         p = pushed;
         nearest = scan_resting(frame, &p, opts);
     }
     p
-}
-
-/// One push of the skin: if the nearest triangle `near` is closer than
-/// `1 + pad / 2`, the body pushed out along its separating direction
-/// ([`push_out`]) to `1 + pad`, plus `extra` if given (or as far as the
-/// room behind it allows); `None` if it is not that close or cannot move.
-#[inline(always)]
-fn skin_push<T: Real>(
-    frame: &Frame<'_, T>,
-    p: &Vec3<T>,
-    near: &Nearest<T>,
-    extra: Option<&T>,
-    opts: &RobustOptions,
-) -> Option<Vec3<T>> {
-    let gap = near.dist.clone() - T::one();
-    if !(gap < near.pad.clone() * T::c(0.5)) {
-        return None;
-    }
-    let dir = normalize(&(p - &near.point))?;
-    let mut want = near.pad.clone() - &gap;
-    if let Some(extra) = extra {
-        want += extra.clone();
-    }
-    let pushed = push_out(frame, p.clone(), &dir, want, &gap.max(T::zero()), opts);
-    (pushed != *p).then_some(pushed)
 }
 
 /// The world position of the eSpace position `p` (relative to the frame's
@@ -483,22 +472,22 @@ fn skin_push<T: Real>(
 /// rounding could undo it.
 ///
 /// `from_espace(p) + origin` rounds each world coordinate `x_i` by up to
-/// `u |x_i|` (and the product `r_i p_i` by `u r_i |p_i|`): in eSpace at most
-/// `R = sqrt(3) u (m + 2 |p|)` for a start of eSpace magnitude `m`, and the
-/// position measured back from the rounded point (its difference to the
-/// origin is exact by Sterbenz's lemma for a move within a factor two of
-/// the origin's coordinates, then one product: `2u |p|`) is within `u |p|`
-/// more. While the padding is not capped its `position_ulps * u * m` term
-/// keeps a resting body `2 u m` or more clear, beyond that rounding. Capped
-/// (`max_padding`, in `f32` from about `4e4` radii from the origin on), a
-/// body resting at the band's lower edge `pad / 2` could be carried into
-/// the wall by the rounding: so when `R >= max_padding / 2` the rounded
-/// position is measured again and, if it lies closer than `1 + pad / 2`,
-/// pushed out to `1 + pad + R` ([`skin_push`]) and rounded again, at most
-/// [`SKIN_ROUNDS`] times. `|p|` is bounded by `reach`, the frame's reach
-/// radius (eSpace), plus the depenetration pushes, and `R` takes three
-/// times that for the `2 |p|` and the `|p|` above. Below that magnitude
-/// the check costs one comparison.
+/// `u |x_i|` and the product `r_i p_i` by `u r_i |p_i|`: in eSpace at most
+/// `R = sqrt(3) u (m + 2 |p|)` for a start of eSpace magnitude `m`. The
+/// padding keeps a resting body `pad / 2` clear, and `pad` is at least
+/// `min(max_padding, (position_ulps m + padding_ulps) u)` (its terms with
+/// `s >= 1` and a tilt factor `>= 1`). When `R` reaches half of that (far
+/// from the origin, where the padding is capped: in `f32` from about
+/// `5e4` radii on; or a displacement of more than about `0.2 m + 7`
+/// radii in one frame) the rounded position is measured again (its
+/// difference to the origin is exact by Sterbenz's lemma for a move within
+/// a factor two of the origin's coordinates, then one product: within
+/// `2u |p|`) and, where a triangle lies closer than `1 + pad / 2`, moved by
+/// the shortest push that leaves every triangle within reach `1 + pad + R`
+/// away ([`shortest_push`], the depenetration's), and rounded again, at
+/// most [`SKIN_ROUNDS`] times. `|p|` is bounded by `reach`, the frame's
+/// reach radius (eSpace), plus the depenetration pushes. Otherwise the
+/// check costs one comparison.
 #[inline(always)]
 pub(crate) fn land<T: Real>(
     frame: &mut Frame<'_, T>,
@@ -508,9 +497,11 @@ pub(crate) fn land<T: Real>(
     opts: &RobustOptions,
 ) -> Vec3<T> {
     let world = frame.body.from_espace(p) + origin;
-    let rounding =
-        3f64.sqrt() * T::unit_roundoff() * (frame.start_magnitude + 3.0 * (reach + frame.trace.depenetration));
-    if rounding < 0.5 * opts.max_padding { world } else { land_checked(frame, world, origin, rounding, opts) }
+    let u = T::unit_roundoff();
+    let m = frame.start_magnitude;
+    let rounding = 3f64.sqrt() * u * (m + 2.0 * (reach + frame.trace.depenetration));
+    let least_pad = opts.max_padding.min((opts.position_ulps * m + opts.padding_ulps) * u);
+    if rounding < 0.5 * least_pad { world } else { land_checked(frame, world, origin, rounding, opts) }
 }
 
 /// [`land`] where the rounding `R` could undo the skin.
@@ -523,12 +514,21 @@ fn land_checked<T: Real>(
     opts: &RobustOptions,
 ) -> Vec3<T> {
     let body = frame.body;
-    let extra = T::c(rounding);
+    // The measurement's own error, `2u |p|`, on top of the rounding.
+    let extra =
+        T::c(rounding) + T::c(2.0 * T::unit_roundoff()) * max_abs(&body.to_espace(&(&world - origin)), T::zero());
+    let mut limits = SmallVec::new();
     for _ in 0..SKIN_ROUNDS {
         let q = body.to_espace(&(&world - origin));
         let Some(near) = scan_resting(frame, &q, opts) else { break };
-        let Some(pushed) = skin_push(frame, &q, &near, Some(&extra), opts) else { break };
-        world = body.from_espace(&pushed) + origin;
+        if !(near.dist - T::one() < near.pad * T::c(0.5)) {
+            break;
+        }
+        limits_at(frame, &q, &extra, opts, &mut limits);
+        if limits.is_empty() {
+            break;
+        }
+        world = body.from_espace(&(q + shortest_push(&mut limits, opts))) + origin;
     }
     world
 }
@@ -607,67 +607,25 @@ pub(crate) fn start<T: Real>(
 /// Pushes a body that starts embedded out of the geometry (run at the start
 /// of every robust move), in up to `depenetration_rounds` rounds.
 ///
-/// Each round that finds an overlap (a triangle nearer than 1) takes every
-/// triangle within `1 + max_padding` as a limit: the unit direction `n`
-/// that separates the centre from its closest point (the face's front
-/// normal if the centre lies on the face, or when triangles are one-sided
-/// and the centre is behind an overlapping one's plane) and the distance
-/// `need` the body must gain along it to lie `1 + pad` from the triangle.
-/// The push is the shortest displacement `d` with `n . d >= need` for the
-/// (up to [`DEPENETRATION_LIMITS`] most pressing) limits ([`least_push`]),
-/// exact for flat walls: in a wedge it moves the body out along the
-/// bisector at once, where a push out of one wall at a time drives the body
-/// into the other and shrinks the overlap only by a factor per round (the
-/// method until the nineteenth session, which left a body started 0.1
-/// inside a 20 degree wedge 0.16 inside after four rounds). A push that
-/// takes the body beyond the margin of the gathered candidates gathers
-/// them again before the next round, so a triangle first within reach
-/// after the push counts too.
+/// A round runs when some triangle is nearer than 1 (checked with the
+/// cheap box and plane tests first: this runs every frame a body is
+/// still) and moves the body by [`shortest_push`] over the limits of every
+/// triangle within `1 + max_padding` ([`limits_at`]): flat walls are
+/// cleared in one round, a wedge along its bisector (where a push out of
+/// one wall at a time, the method until the nineteenth session, drives the
+/// body into the other and left one started 0.1 inside a 20 degree wedge
+/// 0.16 inside after four rounds). A push that takes the body beyond the
+/// margin of the gathered candidates gathers them again before the next
+/// round, so a triangle first within reach after the push counts too.
 fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustOptions) -> Result<Vec3<T>, Error> {
-    let one = T::one();
-    let reach = one.clone() + T::c(opts.max_padding);
-    let tiny = T::c(opts.feasible_ulps * T::unit_roundoff());
     let mut since_gather = 0.0;
-    let mut limits: SmallVec<[(T, Vec3<T>); 8]> = SmallVec::new();
+    let mut limits = SmallVec::new();
     for _ in 0..opts.depenetration_rounds {
-        limits.clear();
-        let mut overlapping = false;
-        for c in &frame.hood.triangles {
-            let tri = &c.triangle;
-            // Cheap tests first: this scan runs every frame a body is still.
-            if c.box_distance_sq(&p) >= reach.clone() * &reach
-                || c.normal.as_ref().is_some_and(|n| dot(n, &(&p - &tri.a)).abs() >= reach)
-            {
-                continue;
-            }
-            let (q, _) = closest_point_on_triangle(&p, tri);
-            let dist = norm(&(&p - &q));
-            if !(dist < reach) {
-                continue;
-            }
-            let front = normalize(&tri.unnormalized_normal());
-            let side = front.as_ref().map(|f| dot(f, &(&p - &tri.a)));
-            let pad = padding(frame.start_magnitude, &p, &Vec3::zeros(), c, opts);
-            let limit = match (front, side) {
-                (Some(f), Some(side)) if side < T::zero() && !frame.detect.two_sided => {
-                    if !(dist < one) {
-                        continue;
-                    }
-                    (one.clone() - &side + &pad, f)
-                }
-                _ if dist > tiny => (one.clone() + &pad - &dist, (&p - &q) / dist.clone()),
-                (Some(f), _) => (one.clone() + &pad, f),
-                (None, _) => continue,
-            };
-            overlapping |= dist < one;
-            limits.push(limit);
-        }
-        if !overlapping {
+        if !overlaps(frame, &p) {
             break;
         }
-        limits.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
-        limits.truncate(DEPENETRATION_LIMITS);
-        let push = least_push(&limits, opts).unwrap_or_else(|| &limits[0].1 * limits[0].0.clone());
+        limits_at(frame, &p, &T::zero(), opts, &mut limits);
+        let push = shortest_push(&mut limits, opts);
         let length = norm(&push).to_f64();
         frame.trace.depenetration += length;
         since_gather += length;
@@ -680,9 +638,94 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
     Ok(p)
 }
 
-/// The most limits one depenetration round solves for (the deepest ones;
-/// the next round sees the rest): the push is chosen among the solutions
-/// of every one, two and three of them, `O(k^3)` candidates.
+/// Whether some candidate lies nearer than 1 to `p` (an overlap).
+fn overlaps<T: Real>(frame: &Frame<'_, T>, p: &Vec3<T>) -> bool {
+    let one = T::one();
+    frame.hood.triangles.iter().any(|c| {
+        let tri = &c.triangle;
+        // A box or plane at distance 1 or more cannot hold an overlap.
+        !(c.box_distance_sq(p) >= one || c.normal.as_ref().is_some_and(|n| dot(n, &(p - &tri.a)).abs() >= one))
+            && norm_squared(&(p - closest_point_on_triangle(p, tri).0)) < one
+    })
+}
+
+/// A limit on a push: `(need, n)`, the distance `need` a body must gain
+/// along the unit direction `n`.
+type Limit<T> = (T, Vec3<T>);
+
+/// Replaces `limits` with those of every triangle within `1 + max_padding
+/// + extra` of `p`: the unit direction that separates `p` from the
+/// triangle's closest point (the face's front normal if `p` lies on the
+/// face, or when triangles are one-sided and `p` is behind the plane of
+/// one it overlaps, which pushes it through to the front; one-sided
+/// triangles it is behind and does not overlap set no limit) and the
+/// distance to gain along it to lie `1 + pad + extra` away.
+fn limits_at<T: Real>(
+    frame: &Frame<'_, T>,
+    p: &Vec3<T>,
+    extra: &T,
+    opts: &RobustOptions,
+    limits: &mut SmallVec<[Limit<T>; 8]>,
+) {
+    let one = T::one();
+    let reach = one.clone() + T::c(opts.max_padding) + extra;
+    let tiny = T::c(opts.feasible_ulps * T::unit_roundoff());
+    limits.clear();
+    for c in &frame.hood.triangles {
+        let tri = &c.triangle;
+        if c.box_distance_sq(p) >= reach.clone() * &reach
+            || c.normal.as_ref().is_some_and(|n| dot(n, &(p - &tri.a)).abs() >= reach)
+        {
+            continue;
+        }
+        let (q, _) = closest_point_on_triangle(p, tri);
+        let dist = norm(&(p - &q));
+        if !(dist < reach) {
+            continue;
+        }
+        let front = normalize(&tri.unnormalized_normal());
+        let side = front.as_ref().map(|f| dot(f, &(p - &tri.a)));
+        let want = one.clone() + padding(frame.start_magnitude, p, &Vec3::zeros(), c, opts) + extra;
+        limits.push(match (front, side) {
+            (Some(f), Some(side)) if side < T::zero() && !frame.detect.two_sided => {
+                if !(dist < one) {
+                    continue;
+                }
+                (want - &side - &one, f)
+            }
+            _ if dist > tiny => (want - &dist, (p - &q) / dist.clone()),
+            (Some(f), _) => (want, f),
+            (None, _) => continue,
+        });
+    }
+}
+
+/// The longest push one round may make, in radii: the most the body's
+/// own size spans. A longer least-norm push (the limits are half-spaces,
+/// the triangles behind them finite: in a narrow crack the push that
+/// clears both planes lies far along the bisector, beyond where the walls
+/// end, and a review found one of 400 radii leaving a closed room) is
+/// shortened to it, and the next round, with the candidates gathered
+/// again, decides from there. No round can then carry the body through a
+/// wall it was not already within `1 + max_padding` of.
+const MAX_PUSH: f64 = 1.0;
+
+/// The push for `limits` (their deepest [`DEPENETRATION_LIMITS`]): the
+/// shortest that satisfies them all ([`least_push`]), or the deepest
+/// one's alone if none does, at most [`MAX_PUSH`] plus the padding cap long.
+fn shortest_push<T: Real>(limits: &mut SmallVec<[Limit<T>; 8]>, opts: &RobustOptions) -> Vec3<T> {
+    limits.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
+    limits.truncate(DEPENETRATION_LIMITS);
+    let Some((need, n)) = limits.first() else { return Vec3::zeros() };
+    let push = least_push(limits, opts).unwrap_or_else(|| n * need.clone());
+    let longest = T::c(MAX_PUSH + opts.max_padding);
+    let length = norm(&push);
+    if length > longest { push * (longest / length) } else { push }
+}
+
+/// The most limits one round solves for (the deepest ones; the next round
+/// sees the rest): the push is chosen among the solutions of every one,
+/// two and three of them, `O(k^3)` candidates.
 const DEPENETRATION_LIMITS: usize = 8;
 
 /// The shortest displacement `d` with `n_i . d >= need_i` for every limit

@@ -287,11 +287,14 @@ fn wedge<T: Real>(degrees: f64) -> World<T> {
 /// session depenetration pushed out of one wall at a time, into the other,
 /// and four rounds left it 0.16 inside in 20 degrees (deeper than it
 /// started) and 0.05 inside in 60 degrees (a review's finding); it now
-/// solves for the shortest push that clears every wall within reach.
+/// moves by the shortest push that clears every wall within reach, at
+/// most about a radius per round.
 fn out_of_acute_wedges<T: Real>() {
     let body = Ellipsoid::<T>::sphere(1.0).unwrap();
     let opts = MoveOptions::new(Response::Robust);
-    for degrees in [2.0, 20.0, 30.0, 60.0, 90.0] {
+    // (Narrower wedges need a longer way out than four rounds of at most
+    // one radius each: 28.6 radii for a body half inside a 2 degree one.)
+    for degrees in [20.0, 30.0, 60.0, 90.0] {
         let world = wedge::<T>(degrees);
         let sin = (degrees / 2.0f64).to_radians().sin();
         for inside in [0.1, 0.5] {
