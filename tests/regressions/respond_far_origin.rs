@@ -258,3 +258,72 @@ fn robust_f32_far_trough_never_penetrates_after_rounding() {
         }
     }
 }
+
+/// Robust `f64` in a 90 degree trough whose apex runs through (1e15, 1e15),
+/// where `f64` coordinates are 0.125 apart: a unit sphere sliding down one
+/// wall ended 0.0277 inside (a review in the nineteenth session). The
+/// re-check after the final rounding had pushed along the nearest wall's
+/// normal only, which the other wall blocked; it now moves by the shortest
+/// push that clears every wall within reach.
+#[test]
+fn robust_f64_trough_at_1e15_stays_out_after_rounding() {
+    let (o, half) = (1e15f64, 100.0 * 45f64.to_radians().sin());
+    let vertices = vec![
+        [o, o, -100.0],
+        [o, o, 100.0],
+        [o + half, o + half, 100.0],
+        [o + half, o + half, -100.0],
+        [o - half, o + half, 100.0],
+        [o - half, o + half, -100.0],
+    ];
+    let mesh =
+        sweepslide::world::TriangleMesh::new(vertices, vec![[0, 1, 2], [0, 2, 3], [0, 4, 1], [0, 5, 4]]).unwrap();
+    let world = World::<f64>::new(std::sync::Arc::new(mesh)).unwrap();
+    let body = Ellipsoid::<f64>::sphere(1.0).unwrap();
+    let options = MoveOptions::new(Response::Robust);
+    let mut p: Vec3<f64> = v([1e15, 1e15 + 1.625, 0.11]);
+    for frame in 0..20 {
+        let m = move_body(&world, &body, &p, &v([0.0, 0.0, 0.01]), Some(&v([0.0, -0.2, 0.0])), &options).unwrap();
+        let pen = penetration(&world, body.radii(), &m.position);
+        assert!(pen.is_none_or(|d| d <= 0.0), "frame {frame}: inside by {pen:?} at {:?}", f64s(&m.position));
+        p = m.position;
+    }
+}
+
+/// Robust `f32` near the origin, a body that crosses 84 radii of a
+/// tessellated 60 degree ramp in one frame: its last contacts' coordinates
+/// relative to the frame's start are about 84, each rounded by `u` times
+/// that, while its padding scaled with 1 (the distance to the nearest
+/// vertex and the remaining displacement were small): it rested 2.7e-6
+/// radii inside (a review in the nineteenth session). The padding's `s`
+/// now includes the position relative to the frame's start.
+#[test]
+fn robust_f32_fast_frame_rests_outside_a_ramp() {
+    let a = 60f64.to_radians();
+    let (t, n) = ([a.cos(), a.sin(), 0.0], [-a.sin(), a.cos(), 0.0]);
+    let (cell, along, across) = (0.5, 600usize, 20usize);
+    let mut vertices = Vec::new();
+    for i in 0..=along {
+        for j in 0..=across {
+            let (u, z) = (i as f64 * cell - 150.0, j as f64 * cell - 5.0);
+            vertices.push([u * t[0], u * t[1], z]);
+        }
+    }
+    let id = |i: usize, j: usize| (i * (across + 1) + j) as u32;
+    let mut triangles = Vec::new();
+    for i in 0..along {
+        for j in 0..across {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    let mesh = sweepslide::world::TriangleMesh::new(vertices, triangles).unwrap();
+    let world = World::<f32>::new(std::sync::Arc::new(mesh)).unwrap();
+    let body = Ellipsoid::<f32>::sphere(1.0).unwrap();
+    let start: Vec3<f32> = v([-0.8883037567138672, 0.4614448547363281, -0.21475455164909363]);
+    let velocity: Vec3<f32> = v([42.32965823820892, 73.31711873560432, -0.08119475700441978]);
+    let gravity: Vec3<f32> = v([-n[0] * 0.1, -n[1] * 0.1, 0.0]);
+    let m = move_body(&world, &body, &start, &velocity, Some(&gravity), &MoveOptions::new(Response::Robust)).unwrap();
+    let pen = penetration(&world, body.radii(), &m.position).unwrap();
+    assert!(pen <= 0.0, "inside by {pen:e} at {:?}", f64s(&m.position));
+}
