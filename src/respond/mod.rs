@@ -224,6 +224,10 @@ pub(crate) struct Frame<'w, T: Real> {
     /// The robust response's resting contacts at the current position, by
     /// their position in `hood`, found at the end of each pass for the next.
     pub resting: SmallVec<[usize; 16]>,
+    /// How much wider than `2 pad` the robust response's resting band is:
+    /// twice the final rounding's bound where that rounding can exceed
+    /// `pad / 2` (`robust::final_rounding`), else zero.
+    pub band: T,
     /// The robust response's planes met in the current pass (a buffer kept
     /// across passes).
     pub planes: SmallVec<[Vec3<T>; 8]>,
@@ -359,6 +363,7 @@ pub fn move_body<T: Real>(
         moves,
         start_magnitude,
         resting: SmallVec::new(),
+        band: T::zero(),
         planes: SmallVec::new(),
         met: SmallVec::new(),
         seeds: SmallVec::new(),
@@ -368,6 +373,9 @@ pub fn move_body<T: Real>(
     let mut p = start.clone();
     let still = |v: &Vec3<T>| v.iter().all(|x| *x == T::zero());
     if options.response == Response::Robust {
+        if let Some(r) = robust::final_rounding::<T>(start_magnitude, reach.radius.to_f64(), &options.robust) {
+            frame.band = T::c(2.0 * r);
+        }
         p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust)?;
     }
     for vel in [velocity, gravity] {

@@ -478,16 +478,15 @@ fn restore_skin<T: Real>(
 /// `min(max_padding, (position_ulps m + padding_ulps) u)` (its terms with
 /// `s >= 1` and a tilt factor `>= 1`). When `R` reaches half of that (far
 /// from the origin, where the padding is capped: in `f32` from about
-/// `5e4` radii on; or a displacement of more than about `0.2 m + 7`
+/// `5e4` radii on; or a displacement of more than about `0.077 m + 5.9`
 /// radii in one frame) the rounded position is measured again (its
 /// difference to the origin is exact by Sterbenz's lemma for a move within
 /// a factor two of the origin's coordinates, then one product: within
 /// `2u |p|`) and, where a triangle lies closer than `1 + pad / 2`, moved by
 /// the shortest push that leaves every triangle within reach `1 + pad + R`
-/// away ([`shortest_push`], the depenetration's), and rounded again, at
-/// most [`SKIN_ROUNDS`] times. `|p|` is bounded by `reach`, the frame's
+/// away ([`land_checked`]). `|p|` is bounded by `reach`, the frame's
 /// reach radius (eSpace), plus the depenetration pushes. Otherwise the
-/// check costs one comparison.
+/// check costs a few operations.
 #[inline(always)]
 pub(crate) fn land<T: Real>(
     frame: &mut Frame<'_, T>,
@@ -497,14 +496,36 @@ pub(crate) fn land<T: Real>(
     opts: &RobustOptions,
 ) -> Vec3<T> {
     let world = frame.body.from_espace(p) + origin;
-    let u = T::unit_roundoff();
-    let m = frame.start_magnitude;
-    let rounding = 3f64.sqrt() * u * (m + 2.0 * (reach + frame.trace.depenetration));
-    let least_pad = opts.max_padding.min((opts.position_ulps * m + opts.padding_ulps) * u);
-    if rounding < 0.5 * least_pad { world } else { land_checked(frame, world, origin, rounding, opts) }
+    match final_rounding::<T>(frame.start_magnitude, reach + frame.trace.depenetration, opts) {
+        None => world,
+        Some(rounding) => land_checked(frame, world, origin, rounding, opts),
+    }
 }
 
-/// [`land`] where the rounding `R` could undo the skin.
+/// The bound `R = sqrt(3) u (m + 2 travel)` of the final rounding's shift
+/// in eSpace ([`land`]) for a start of eSpace magnitude `m` and a position
+/// at most `travel` from it, where it can exceed half the least padding
+/// `min(max_padding, (position_ulps m + padding_ulps) u)`; `None` where it
+/// cannot.
+pub(crate) fn final_rounding<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> Option<f64> {
+    let u = T::unit_roundoff();
+    let rounding = 3f64.sqrt() * u * (m + 2.0 * travel);
+    let least_pad = opts.max_padding.min((opts.position_ulps * m + opts.padding_ulps) * u);
+    (rounding >= 0.5 * least_pad).then_some(rounding)
+}
+
+/// [`land`] where the rounding `R` could undo the skin: measure the
+/// rounded position again; while a triangle lies closer than `1 + pad /
+/// 2`, move by the shortest push that leaves every triangle within reach
+/// `1 + pad + R'` away (`R'` = `R` plus the measurement's `2u |p|`), at
+/// most `pad + 2 R'` long, round, and measure again, at most
+/// [`SKIN_ROUNDS`] times; of the positions measured, the first clear one,
+/// or else the one with the widest gap (never a worse one than the
+/// rounding gave: a push in a tight space, unswept, can meet what it was
+/// not near, and a review found longer pushes carrying bodies 0.7 radii
+/// into a duct's ceiling). The resting band is `2 R` wider in such frames
+/// ([`super::Frame::band`]), so a body pushed out to `1 + pad + R` rests
+/// there in the next frame instead of falling back.
 #[cold]
 fn land_checked<T: Real>(
     frame: &mut Frame<'_, T>,
@@ -518,19 +539,25 @@ fn land_checked<T: Real>(
     let extra =
         T::c(rounding) + T::c(2.0 * T::unit_roundoff()) * max_abs(&body.to_espace(&(&world - origin)), T::zero());
     let mut limits = SmallVec::new();
-    for _ in 0..SKIN_ROUNDS {
+    let mut widest: Option<(T, Vec3<T>)> = None;
+    for round in 0..=SKIN_ROUNDS {
         let q = body.to_espace(&(&world - origin));
-        let Some(near) = scan_resting(frame, &q, opts) else { break };
-        if !(near.dist - T::one() < near.pad * T::c(0.5)) {
-            break;
+        let Some(near) = scan_resting(frame, &q, opts) else { return world };
+        let gap = near.dist - T::one();
+        if !(gap < near.pad.clone() * T::c(0.5)) {
+            return world;
+        }
+        if widest.as_ref().is_none_or(|(g, _)| gap > *g) {
+            widest = Some((gap, world.clone()));
         }
         limits_at(frame, &q, &extra, opts, &mut limits);
-        if limits.is_empty() {
+        if round == SKIN_ROUNDS || limits.is_empty() {
             break;
         }
-        world = body.from_espace(&(q + shortest_push(&mut limits, opts))) + origin;
+        let longest = near.pad + T::c(2.0) * &extra;
+        world = body.from_espace(&(q + shortest_push(&mut limits, &longest, opts))) + origin;
     }
-    world
+    widest.map_or(world, |(_, w)| w)
 }
 
 /// The triangle nearest a position, from [`scan_resting`].
@@ -548,7 +575,7 @@ struct Nearest<T: Real> {
 /// within `1 + max_padding`.
 fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOptions) -> Option<Nearest<T>> {
     let one = T::one();
-    let reach = one.clone() + T::c(opts.max_padding);
+    let reach = one.clone() + T::c(opts.max_padding) + &frame.band;
     let reach_sq = reach.clone() * &reach;
     let mut nearest: Option<Nearest<T>> = None;
     frame.resting.clear();
@@ -568,7 +595,7 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
         }
         let dist = dist_sq.sqrt();
         let pad = padding(frame.start_magnitude, p, &Vec3::zeros(), c, opts);
-        if dist <= one.clone() + T::c(2.0) * &pad {
+        if dist <= one.clone() + T::c(2.0) * &pad + &frame.band {
             frame.resting.push(k);
         }
         if nearest.as_ref().is_none_or(|b| dist < b.dist) {
@@ -625,7 +652,7 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
             break;
         }
         limits_at(frame, &p, &T::zero(), opts, &mut limits);
-        let push = shortest_push(&mut limits, opts);
+        let push = shortest_push(&mut limits, &T::c(MAX_PUSH + opts.max_padding), opts);
         let length = norm(&push).to_f64();
         frame.trace.depenetration += length;
         since_gather += length;
@@ -691,7 +718,7 @@ fn limits_at<T: Real>(
                 if !(dist < one) {
                     continue;
                 }
-                (want - &side - &one, f)
+                (want - &side, f)
             }
             _ if dist > tiny => (want - &dist, (p - &q) / dist.clone()),
             (Some(f), _) => (want, f),
@@ -707,20 +734,21 @@ fn limits_at<T: Real>(
 /// end, and a review found one of 400 radii leaving a closed room) is
 /// shortened to it, and the next round, with the candidates gathered
 /// again, decides from there. No round can then carry the body through a
-/// wall it was not already within `1 + max_padding` of.
+/// wall it was not already within `1 + max_padding` of (a one-sided
+/// triangle it overlaps from behind it pushes through to the front, as
+/// intended).
 const MAX_PUSH: f64 = 1.0;
 
 /// The push for `limits` (their deepest [`DEPENETRATION_LIMITS`]): the
 /// shortest that satisfies them all ([`least_push`]), or the deepest
-/// one's alone if none does, at most [`MAX_PUSH`] plus the padding cap long.
-fn shortest_push<T: Real>(limits: &mut SmallVec<[Limit<T>; 8]>, opts: &RobustOptions) -> Vec3<T> {
+/// one's alone if none does, at most `longest`.
+fn shortest_push<T: Real>(limits: &mut SmallVec<[Limit<T>; 8]>, longest: &T, opts: &RobustOptions) -> Vec3<T> {
     limits.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
     limits.truncate(DEPENETRATION_LIMITS);
     let Some((need, n)) = limits.first() else { return Vec3::zeros() };
     let push = least_push(limits, opts).unwrap_or_else(|| n * need.clone());
-    let longest = T::c(MAX_PUSH + opts.max_padding);
     let length = norm(&push);
-    if length > longest { push * (longest / length) } else { push }
+    if length > *longest { push * (longest.clone() / length) } else { push }
 }
 
 /// The most limits one round solves for (the deepest ones; the next round
