@@ -161,15 +161,30 @@ impl RobustOptions {
 /// plane, `s` from its nearest vertex, is off by as much times `s` (fuzz
 /// finding F14). A triangle degenerate in this precision (no normal) keeps
 /// the plain padding.
-fn padding<T: Real>(start_magnitude: f64, p: &Vec3<T>, w: &Vec3<T>, c: &Candidate<T>, opts: &RobustOptions) -> T {
+///
+/// `least_s` is `max(1, |p|)` ([`least_s`]), computed once by callers that
+/// pad many triangles at one position.
+fn padding<T: Real>(
+    start_magnitude: f64,
+    least_s: f64,
+    p: &Vec3<T>,
+    w: &Vec3<T>,
+    c: &Candidate<T>,
+    opts: &RobustOptions,
+) -> T {
     let u = T::unit_roundoff();
     let tri = &c.triangle;
     let magnitude = |v: &Vec3<T>| max_abs(v, T::zero()).to_f64();
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
-    let s = magnitude(w).max(nearest).max(magnitude(p)).max(1.0);
+    let s = magnitude(w).max(nearest).max(least_s);
     // The tilt never exceeds the shape factor: most triangles need no more.
     let tilt = if c.shape.to_f64() <= opts.free_tilt { 1.0 } else { opts.tilt_factor(c.tilt()) };
     T::c((opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
+}
+
+/// The least `s` of [`padding`] at `p`: `max(1, |p|)`.
+fn least_s<T: Real>(p: &Vec3<T>) -> f64 {
+    max_abs(p, T::zero()).to_f64().max(1.0)
 }
 
 /// Triangle `index` of the frame as a candidate in eSpace coordinates:
@@ -354,7 +369,7 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             continue;
         }
         grazed.clear();
-        let pad = padding(frame.start_magnitude, &p, &remaining, &candidate_e(frame, hit.triangle), opts);
+        let pad = padding(frame.start_magnitude, least_s(&p), &p, &remaining, &candidate_e(frame, hit.triangle), opts);
         // The gap to the contact along its normal now. Within the resting
         // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
         // out, so rounding cannot make it toggle between neighbouring floats.
@@ -578,6 +593,7 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
     let reach = one.clone() + T::c(opts.max_padding) + &frame.band;
     let reach_sq = reach.clone() * &reach;
     let mut nearest: Option<Nearest<T>> = None;
+    let s = least_s(p);
     frame.resting.clear();
     for (k, c) in frame.hood.triangles.iter().enumerate() {
         if c.box_distance_sq(p) >= reach_sq
@@ -594,7 +610,7 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
             continue;
         }
         let dist = dist_sq.sqrt();
-        let pad = padding(frame.start_magnitude, p, &Vec3::zeros(), c, opts);
+        let pad = padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts);
         if dist <= one.clone() + T::c(2.0) * &pad + &frame.band {
             frame.resting.push(k);
         }
@@ -697,6 +713,7 @@ fn limits_at<T: Real>(
     let one = T::one();
     let reach = one.clone() + T::c(opts.max_padding) + extra;
     let tiny = T::c(opts.feasible_ulps * T::unit_roundoff());
+    let s = least_s(p);
     limits.clear();
     for c in &frame.hood.triangles {
         let tri = &c.triangle;
@@ -712,7 +729,7 @@ fn limits_at<T: Real>(
         }
         let front = normalize(&tri.unnormalized_normal());
         let side = front.as_ref().map(|f| dot(f, &(p - &tri.a)));
-        let want = one.clone() + padding(frame.start_magnitude, p, &Vec3::zeros(), c, opts) + extra;
+        let want = one.clone() + padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts) + extra;
         limits.push(match (front, side) {
             (Some(f), Some(side)) if side < T::zero() && !frame.detect.two_sided => {
                 if !(dist < one) {
