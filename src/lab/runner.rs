@@ -340,8 +340,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
             let front = now.iter().zip(&entered).filter(|(_, (_, behind))| !behind).map(|(t, _)| t.depth);
             // (`now` cannot be empty when `d > 0`; if it were, the frame
             // would count as a front penetration, not be hidden.)
-            match front.fold(None, |m: Option<f64>, d| Some(m.map_or(d, |m| m.max(d)))).or(now.is_empty().then_some(d))
-            {
+            match front.reduce(f64::max).or(now.is_empty().then_some(d)) {
                 None => {
                     from_behind = true;
                     back_face += 1;

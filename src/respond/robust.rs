@@ -596,9 +596,7 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
     let s = least_s(p);
     frame.resting.clear();
     for (k, c) in frame.hood.triangles.iter().enumerate() {
-        if c.box_distance_sq(p) >= reach_sq
-            || c.normal.as_ref().is_some_and(|n| dot(n, &(p - &c.triangle.a)).abs() >= reach)
-        {
+        if beyond(c, p, &reach, &reach_sq) {
             continue;
         }
         let (point, _) = closest_point_on_triangle(p, &c.triangle);
@@ -687,9 +685,16 @@ fn overlaps<T: Real>(frame: &Frame<'_, T>, p: &Vec3<T>) -> bool {
     frame.hood.triangles.iter().any(|c| {
         let tri = &c.triangle;
         // A box or plane at distance 1 or more cannot hold an overlap.
-        !(c.box_distance_sq(p) >= one || c.normal.as_ref().is_some_and(|n| dot(n, &(p - &tri.a)).abs() >= one))
-            && norm_squared(&(p - closest_point_on_triangle(p, tri).0)) < one
+        !beyond(c, p, &one, &one) && norm_squared(&(p - closest_point_on_triangle(p, tri).0)) < one
     })
+}
+
+/// Whether candidate `c`'s box or plane lies `reach` or more from `p`
+/// (`reach_sq` its square): then so does the triangle. The cheap tests
+/// the scans run before a closest point.
+#[inline]
+fn beyond<T: Real>(c: &Candidate<T>, p: &Vec3<T>, reach: &T, reach_sq: &T) -> bool {
+    c.box_distance_sq(p) >= *reach_sq || c.normal.as_ref().is_some_and(|n| dot(n, &(p - &c.triangle.a)).abs() >= *reach)
 }
 
 /// A limit on a push: `(need, n)`, the distance `need` a body must gain
@@ -717,9 +722,7 @@ fn limits_at<T: Real>(
     limits.clear();
     for c in &frame.hood.triangles {
         let tri = &c.triangle;
-        if c.box_distance_sq(p) >= reach.clone() * &reach
-            || c.normal.as_ref().is_some_and(|n| dot(n, &(p - &tri.a)).abs() >= reach)
-        {
+        if beyond(c, p, &reach, &(reach.clone() * &reach)) {
             continue;
         }
         let (q, _) = closest_point_on_triangle(p, tri);
