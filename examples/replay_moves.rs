@@ -1,13 +1,15 @@
 //! Replays the robust `f32` terrain moves of `docs/performance.md` in a
 //! plain loop, for profilers: 256 consecutive on-ground frames of the
 //! `terrain:224` scene (steering seed 7, from the first frame that touches
-//! the ground), each replayed from its recorded start, `REPS` times.
+//! the ground), each replayed from its recorded start, `REPS` times. A
+//! second argument names another built-in scene (`floor`, `corner:45`).
 //!
 //! ```text
 //! cargo build --release --example replay_moves
 //! ./target/release/examples/replay_moves 2000      # ns per move, checks, checksum
 //! valgrind --tool=callgrind --toggle-collect='*timed_loop*' \
 //!     ./target/release/examples/replay_moves 20    # instructions: total / (20 * 256)
+//! ./target/release/examples/replay_moves 2000 floor
 //! ```
 //!
 //! The checksum of the final positions tells whether a change kept the
@@ -26,11 +28,15 @@ fn main() {
         None => 10,
         Some(Ok(n)) => n,
         Some(Err(e)) => {
-            eprintln!("usage: replay_moves [REPS]: {e}");
+            eprintln!("usage: replay_moves [REPS] [SCENE]: {e}");
             std::process::exit(2);
         }
     };
-    let scene = build("terrain:224", 1).expect("built-in scene");
+    let name = std::env::args().nth(2).unwrap_or_else(|| "terrain:224".into());
+    let scene = build(&name, 1).unwrap_or_else(|e| {
+        eprintln!("usage: replay_moves [REPS] [SCENE]: {e}");
+        std::process::exit(2);
+    });
     let world = World::<F>::new(scene.mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<F>::new(scene.radii).expect("scene radii");
     let gravity: Vec3<F> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);

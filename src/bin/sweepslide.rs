@@ -344,7 +344,7 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
             out!("  snag ratio    {s:.6} (1 = ideal slide)");
         }
         out!("  final position {:?}", r.final_position);
-        out!("  time per move  {:.0} ns (includes no metric)", r.ns_per_move);
+        out!("  time per move  {:.0} ns (the moves again, back to back, after the run)", r.ns_per_move);
     }
     Ok(())
 }
