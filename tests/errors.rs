@@ -634,13 +634,14 @@ fn move_options_out_of_range_name_the_field() {
     let body = Ellipsoid::<f64>::sphere(0.5).unwrap();
     let (p, v) = (vec3::<f64>(0.0, 1.0, 0.0), vec3::<f64>(0.1, -0.2, 0.0));
     type Edit = fn(&mut MoveOptions);
-    let cases: [(&str, Edit); 9] = [
+    let cases: [(&str, Edit); 10] = [
         ("robust.max_padding", |o| o.robust.max_padding = -0.5),
         ("robust.padding_ulps", |o| o.robust.padding_ulps = -1e12),
         ("detect.touch_ulps", |o| o.detect.touch_ulps = f64::NAN),
         ("robust.feasible_ulps", |o| o.robust.feasible_ulps = f64::INFINITY),
         ("linahan.very_close_distance", |o| o.linahan.very_close_distance = f64::NAN),
         ("robust.free_tilt", |o| o.robust.free_tilt = 0.0),
+        ("robust.rounding_ulps", |o| o.robust.rounding_ulps = -1.0),
         ("robust.depenetration_rounds", |o| o.robust.depenetration_rounds = u32::MAX),
         ("robust.max_iterations", |o| o.robust.max_iterations = 0),
         ("fauerby.max_depth", |o| o.fauerby.max_depth = MAX_ROUNDS + 1),

@@ -511,6 +511,23 @@ fn resting_contacts_are_met_without_sweeps_and_as_the_sweeps_would() {
     }
 }
 
+/// Far from the origin in `f32` the final rounding can undo the padding,
+/// and the robust response rests in a band twice its bound wider
+/// (`RobustOptions::rounding_ulps`). The replay scales that bound too: with
+/// its own, a body resting 0.03 radii above the floor at `1e5` was, for the
+/// replay, a body above its band that slides free, and every frame counted
+/// as a decision flip with another number of planes (299 of 300 until the
+/// twentieth session).
+#[test]
+fn the_replay_keeps_the_resting_band_far_from_the_origin() {
+    let scene = sweepslide::lab::scenes::build("floor", 1).unwrap().offset([1e5, 0.0, 1e5], true).unwrap();
+    let scene = Arc::new(sweepslide::lab::scenes::Scene { frames: 40, ..scene });
+    let cfg = RunConfig { scene, response: Response::Robust, detection: None, precision: Precision::F32, seed: 1 };
+    let r = run(&cfg).unwrap().result;
+    assert!(r.mean_iterations >= 1.0, "the body slides over the floor: {} sweeps per move", r.mean_iterations);
+    assert_eq!((r.decision_flips, r.plane_flips, r.penetrating_frames), (0, 0, 0));
+}
+
 #[test]
 fn velocity_given_on_the_command_line_replaces_a_cases_recorded_velocities() {
     let dir = std::env::temp_dir().join(format!("sweepslide-velocity-{}", std::process::id()));

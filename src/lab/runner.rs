@@ -239,7 +239,9 @@ fn is_capped(stop: StopReason) -> bool {
 
 /// `opts` for the `Mpfr<256>` replay: every tolerance counted in units of
 /// the unit roundoff (the robust detection's touching tolerance, the robust
-/// response's padding, admissibility and parallel-plane tolerances) scaled
+/// response's padding, admissibility and parallel-plane tolerances, and the
+/// final rounding's bound, which widens the resting band far from the
+/// origin) scaled
 /// from `u` of `T` to `u` of the reference, so the replay decides with the
 /// same absolute tolerances as the run, only without its rounding. (With
 /// its own, far smaller tolerances, a body the run holds in the resting
@@ -250,7 +252,9 @@ fn same_tolerances<T: Real>(opts: &MoveOptions) -> MoveOptions {
     let mut o = opts.clone();
     o.detect.touch_ulps *= k;
     let r = &mut o.robust;
-    for x in [&mut r.padding_ulps, &mut r.position_ulps, &mut r.parallel_ulps, &mut r.feasible_ulps] {
+    for x in
+        [&mut r.padding_ulps, &mut r.position_ulps, &mut r.parallel_ulps, &mut r.feasible_ulps, &mut r.rounding_ulps]
+    {
         *x *= k;
     }
     o

@@ -125,6 +125,7 @@ impl MoveOptions {
         not_negative("robust.position_ulps", r.position_ulps)?;
         not_negative("robust.parallel_ulps", r.parallel_ulps)?;
         not_negative("robust.feasible_ulps", r.feasible_ulps)?;
+        not_negative("robust.rounding_ulps", r.rounding_ulps)?;
         not_negative("linahan.very_close_distance", self.linahan.very_close_distance)?;
         positive("robust.free_tilt", r.free_tilt)?;
         positive("fauerby.units_per_meter", self.fauerby.units_per_meter)?;

@@ -118,6 +118,16 @@ pub struct RobustOptions {
     /// moves it at most about one radius, and a body that does not overlap
     /// anything costs one scan).
     pub depenetration_rounds: u32,
+    /// The bound of the final world position's rounding, in eSpace, per
+    /// unit of `u (m + 2 travel)` (`m` the start's eSpace magnitude,
+    /// `travel` how far the body may have gone; default `sqrt(3)`, the
+    /// bound derived for [`final_rounding`]). Where it can exceed half the
+    /// least padding the skin is checked after the rounding and the
+    /// resting band is twice the bound wider ([`super::Frame::band`]).
+    /// Lowering it below `sqrt(3)` voids that check; the lab's `Mpfr<256>`
+    /// replay scales it with the other `*_ulps` fields, so that it rests
+    /// in the run's band.
+    pub rounding_ulps: f64,
 }
 
 impl Default for RobustOptions {
@@ -131,6 +141,7 @@ impl Default for RobustOptions {
             parallel_ulps: 1024.0,
             feasible_ulps: 64.0,
             depenetration_rounds: 8,
+            rounding_ulps: 3f64.sqrt(),
         }
     }
 }
@@ -518,13 +529,14 @@ pub(crate) fn land<T: Real>(
 }
 
 /// The bound `R = sqrt(3) u (m + 2 travel)` of the final rounding's shift
-/// in eSpace ([`land`]) for a start of eSpace magnitude `m` and a position
-/// at most `travel` from it, where it can exceed half the least padding
+/// in eSpace ([`land`]; `sqrt(3)` is [`RobustOptions::rounding_ulps`]) for
+/// a start of eSpace magnitude `m` and a position at most `travel` from
+/// it, where it can exceed half the least padding
 /// `min(max_padding, (position_ulps m + padding_ulps) u)`; `None` where it
 /// cannot.
 pub(crate) fn final_rounding<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> Option<f64> {
     let u = T::unit_roundoff();
-    let rounding = 3f64.sqrt() * u * (m + 2.0 * travel);
+    let rounding = opts.rounding_ulps * u * (m + 2.0 * travel);
     let least_pad = opts.max_padding.min((opts.position_ulps * m + opts.padding_ulps) * u);
     (rounding >= 0.5 * least_pad).then_some(rounding)
 }
