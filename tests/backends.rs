@@ -642,6 +642,69 @@ fn move_bodies_runs_at_the_callers_dynamic_precision() {
     }
 }
 
+/// A floor `y = 0` over `[-8, 8]^2` in 2 x 2 squares, split along their
+/// diagonals (internal edges everywhere), and two walls `x = 3` and
+/// `z = 3` facing the origin: a corner.
+fn tessellated_corner() -> std::sync::Arc<sweepslide::world::TriangleMesh> {
+    let n = 8u32;
+    let mut v = Vec::new();
+    let mut t = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            v.push([-8.0 + 2.0 * f64::from(i), 0.0, -8.0 + 2.0 * f64::from(j)]);
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            let (b, c) = (a + 1, a + n + 1);
+            t.extend([[a, c + 1, b], [a, c, c + 1]]);
+        }
+    }
+    let base = v.len() as u32;
+    v.extend([[3.0, 0.0, -8.0], [3.0, 0.0, 8.0], [3.0, 4.0, 8.0], [3.0, 4.0, -8.0]]);
+    v.extend([[-8.0, 0.0, 3.0], [8.0, 0.0, 3.0], [8.0, 4.0, 3.0], [-8.0, 4.0, 3.0]]);
+    t.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+    t.extend([[base + 4, base + 6, base + 5], [base + 4, base + 7, base + 6]]);
+    std::sync::Arc::new(sweepslide::world::TriangleMesh::new(v, t).unwrap())
+}
+
+/// Beyond 1,022 bits `2^-bits` is no longer a normal `f64`: the unit
+/// roundoff is floored at `2^-FINEST_BITS` so that the tolerances built
+/// from it stay positive (a review found them all zero from 1,023 bits on:
+/// on a tessellated floor the robust response then stopped, blocked, at
+/// every frame and left the body near its start instead of in the
+/// corner). The slides at 200 and 1,100 bits end within rounding of each
+/// other, in the corner.
+#[test]
+fn tolerances_stay_positive_beyond_the_f64_exponent_range() {
+    use sweepslide::real::FINEST_BITS;
+    use sweepslide::respond::{MoveOptions, Response, move_body};
+    use sweepslide::world::World;
+    let mesh = tessellated_corner();
+    let slide = |bits| {
+        with_precision(bits, || {
+            assert!(MpfrDyn::unit_roundoff() >= (-f64::from(FINEST_BITS)).exp2());
+            let world = World::<MpfrDyn>::new(mesh.clone()).unwrap();
+            let body = Ellipsoid::<MpfrDyn>::new([0.5, 0.7, 0.5]).unwrap();
+            let opts = MoveOptions::new(Response::Robust);
+            let mut p: Vec3<MpfrDyn> = vec3(-2.0, 0.7, -2.3);
+            let (v, g): (Vec3<MpfrDyn>, Vec3<MpfrDyn>) = (vec3(0.31, 0.0, 0.23), vec3(0.0, -0.2, 0.0));
+            for _ in 0..80 {
+                p = move_body(&world, &body, &p, &v, Some(&g), &opts).unwrap().position;
+            }
+            [0, 1, 2].map(|i| p[i].to_f64())
+        })
+        .unwrap()
+    };
+    let (fine, finer) = (slide(200), slide(1100));
+    // In the corner, the centre half a radius from each wall.
+    assert!((fine[0] - 2.5).abs() < 1e-3 && (fine[2] - 2.5).abs() < 1e-3, "{fine:?}");
+    for i in 0..3 {
+        assert!((fine[i] - finer[i]).abs() < 1e-9, "{fine:?} at 200 bits, {finer:?} at 1,100");
+    }
+}
+
 /// `MpfrDyn` inputs made at another precision than the thread's are
 /// refused (a world, a body or a position from another `with_precision`
 /// scope), not silently mixed.

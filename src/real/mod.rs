@@ -94,16 +94,24 @@ pub trait Real:
 
     /// Unit roundoff `u = 2^-bits`: the largest relative error of one
     /// correctly rounded operation in the normal range.
-    /// (Exact; zero for precisions beyond what an `f64` can represent.)
+    ///
+    /// Exact up to [`FINEST_BITS`] bits; beyond, `2^-FINEST_BITS`. Every
+    /// tolerance is a multiple of `u` formed in `f64` (`k u s`, `s >= 1`
+    /// a magnitude), so `u` must stay a normal `f64` with room below it:
+    /// as `2^-bits` it would underflow to zero from 1,075 bits on (and to a
+    /// subnormal from 1,023), leaving every tolerance zero and the robust
+    /// response frozen. The floor makes those tolerances wider than the
+    /// rounding needs, never narrower.
     #[must_use]
     fn unit_roundoff() -> f64 {
-        power_of_two(-(Self::bits() as i64))
+        power_of_two(-i64::from(Self::bits().min(FINEST_BITS)))
     }
 
-    /// Machine epsilon `2^(1 - bits)`: the gap between 1 and the next value.
+    /// Machine epsilon `2 u`: the gap between 1 and the next value (floored
+    /// as [`Real::unit_roundoff`]).
     #[must_use]
     fn machine_epsilon() -> f64 {
-        power_of_two(1 - Self::bits() as i64)
+        2.0 * Self::unit_roundoff()
     }
 
     /// The smaller of two values (`self` when they compare equal or
@@ -148,9 +156,15 @@ pub trait Real:
     }
 }
 
-/// `2^e` exactly, built from its bit pattern (no `exp2` call on the hot
-/// path); zero below the smallest normal `f64`.
+/// The finest precision whose unit roundoff the tolerances use
+/// ([`Real::unit_roundoff`]): `2^-960` leaves 62 binary orders of
+/// magnitude above `f64`'s smallest normal for the tolerances' factors.
+pub const FINEST_BITS: u32 = 960;
+
+/// `2^e` exactly for `-1022 <= e <= 1023`, built from its bit pattern (no
+/// `exp2` call on the hot path).
 #[inline]
 fn power_of_two(e: i64) -> f64 {
-    if e < -1022 { 0.0 } else { f64::from_bits(((e + 1023) as u64) << 52) }
+    debug_assert!((-1022..=1023).contains(&e));
+    f64::from_bits(((e + 1023) as u64) << 52)
 }

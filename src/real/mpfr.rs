@@ -80,7 +80,12 @@ impl<const BITS: u32> Mpfr<BITS> {
     #[inline]
     #[must_use]
     pub fn precision() -> u32 {
-        const { assert!(BITS == DYNAMIC || BITS >= MIN_BITS, "Mpfr<BITS>: BITS must be 0 (dynamic) or at least 2") };
+        const {
+            assert!(
+                BITS == DYNAMIC || (BITS >= MIN_BITS && BITS <= MAX_BITS),
+                "Mpfr<BITS>: BITS must be 0 (dynamic) or lie in MIN_BITS..=MAX_BITS (2..=65536)"
+            )
+        };
         if BITS == DYNAMIC { DYNAMIC_BITS.with(Cell::get) } else { BITS }
     }
 
