@@ -482,3 +482,57 @@ fn mpfr_matches_hardware_floats_bit_for_bit() {
     assert_eq!(f32_bits, result_bits::<sweepslide::Mpfr<24>>(), "f32 vs Mpfr<24>");
     assert_eq!(result_bits::<f64>(), result_bits::<sweepslide::Mpfr<53>>(), "f64 vs Mpfr<53>");
 }
+
+/// The ball query widens its radius by the conversion slack (how far a
+/// vertex rounded into `T` lies from the `f64` vertex the BVH's boxes hold)
+/// along the ball's whole scale vector, not along one axis: a slack in
+/// every coordinate moves the vertex `sqrt(3)` times as far for a sphere.
+/// Below 24 bits no `f32` leaf box hides that, and a review found the
+/// query in `Mpfr<8>` dropping a vertex 1.9993 away from a ball of radius
+/// 2 centred on the diagonal below it.
+#[test]
+fn the_ball_query_keeps_a_vertex_rounded_along_the_diagonal() {
+    use sweepslide::Mpfr;
+    type T = Mpfr<8>;
+    let d = 0.49 / 128.0;
+    let mesh = TriangleMesh::new(vec![[1.0 + d; 3], [2.0, 1.25, 1.5], [1.5, 2.0, 1.75]], vec![[0, 1, 2]]).unwrap();
+    let world = World::<T>::new(Arc::new(mesh)).unwrap();
+    // The vertex rounds to (1, 1, 1) in 8 bits: d / 2 beyond half an ulp.
+    let p0 = world.corners(0)[0].map(|x| x.to_f64());
+    assert_eq!(p0, nalgebra::Vector3::new(1.0, 1.0, 1.0));
+    let k = 2.0 / 3f64.sqrt();
+    let centre: Vec3<T> = Vec3::from_fn(|i, _| T::from_f64(p0[i] - k));
+    let dist = (p0 - centre.map(|x| x.to_f64())).norm();
+    let radius = T::c(2.0);
+    assert!(dist < 2.0, "the rounded vertex lies inside the ball: {dist}");
+    let radii: Vec3<T> = vec3(1.0, 1.0, 1.0);
+    let (min, max) = (centre.map(|x| x - T::c(8.0)), centre.map(|x| x + T::c(8.0)));
+    let mut got = Vec::new();
+    world.each_candidate(&min, &max, Some((&centre, &radii, &radius)), |t| got.push(t));
+    assert_eq!(got, [0]);
+}
+
+/// A world converted into a narrower backend measures its conversion slack
+/// again: with the `Mpfr<256>` world's slack (zero) kept, box queries in
+/// `Mpfr<11>` missed triangles whose rounded vertices had moved outside
+/// the `f64` boxes (a review). Every triangle of a fine strip far from the
+/// origin is found by a box around its own rounded vertices.
+#[test]
+fn a_world_converted_to_fewer_bits_widens_its_queries() {
+    use sweepslide::Mpfr;
+    let (mut v, mut t) = (Vec::new(), Vec::new());
+    for i in 0..200u32 {
+        let x = 3.3e3 + 0.37 * f64::from(i);
+        v.extend([[x, 0.013 * f64::from(i % 7), 0.0], [x + 0.3, 1.0, 0.1], [x, 0.5, 1.0]]);
+        t.push([3 * i, 3 * i + 1, 3 * i + 2]);
+    }
+    let wide = World::<Mpfr<256>>::new(Arc::new(TriangleMesh::new(v, t).unwrap())).unwrap();
+    let narrow = wide.converted::<Mpfr<11>>().unwrap();
+    let mut found = Vec::new();
+    for i in 0..200u32 {
+        let tri = narrow.triangle(i);
+        let (lo, hi) = tri.bounds();
+        narrow.candidates(&lo, &hi, &mut found);
+        assert!(found.contains(&i), "triangle {i} not found by a box around its own vertices");
+    }
+}

@@ -260,8 +260,18 @@ fn invalid_radius_f64() {
 #[cfg(feature = "mpfr")]
 #[test]
 fn invalid_radius_mpfr() {
-    invalid_radius::<sweepslide::Mpfr<24>>();
-    invalid_radius::<sweepslide::Mpfr<113>>();
+    use sweepslide::Mpfr;
+    invalid_radius::<Mpfr<24>>();
+    invalid_radius::<Mpfr<113>>();
+    // MPFR's exponent range holds a radius of 1e-309 and its inverse, but
+    // the world's BVH measures the reach in `f64`, where that inverse is
+    // infinite: every ball query came back empty and every wall was missed
+    // (a review); such radii are refused, by both constructors.
+    assert_eq!(Ellipsoid::<Mpfr<53>>::sphere(1e-309).unwrap_err(), Error::InvalidRadius { axis: 'x', value: 1e-309 });
+    let tiny = Mpfr::<113>::from_rug(&(rug::Float::with_val(113, 1) >> 2000u32));
+    let radii = sweepslide::geom::vec3::<Mpfr<113>>(1.0, 1.0, 1.0).map(|r| r * &tiny);
+    assert_eq!(Ellipsoid::from_radii(radii).unwrap_err(), Error::InvalidRadius { axis: 'x', value: 0.0 });
+    assert!(Ellipsoid::<Mpfr<53>>::sphere(1e-300).is_ok());
 }
 
 // ---------------------------------------------------------------------------

@@ -27,7 +27,8 @@ impl<T: Real> Ellipsoid<T> {
     /// # Errors
     /// [`Error::InvalidRadius`] when a radius is zero, negative, NaN or
     /// infinite, or does not survive the conversion to `T` as a positive
-    /// finite value with a finite inverse.
+    /// finite value with a finite inverse (in `T` and in `f64`: from about
+    /// `5.6e-309` to `1.8e308`).
     pub fn new(radii: [f64; 3]) -> Result<Self, Error> {
         let converted = Vector3::new(T::from_f64(radii[0]), T::from_f64(radii[1]), T::from_f64(radii[2]));
         for ((axis, r), rt) in ['x', 'y', 'z'].into_iter().zip(radii).zip(converted.iter()) {
@@ -42,7 +43,9 @@ impl<T: Real> Ellipsoid<T> {
     ///
     /// # Errors
     /// [`Error::InvalidRadius`] when a radius is not positive and finite, or
-    /// so small that its inverse overflows.
+    /// so small that its inverse overflows (in `T` or in `f64`: an MPFR
+    /// radius must also lie within `f64`'s normal range, about `2.2e-308`
+    /// to `1.8e308`, as [`Ellipsoid::new`]).
     pub fn from_radii(radii: Vec3<T>) -> Result<Self, Error> {
         for (axis, r) in ['x', 'y', 'z'].into_iter().zip(radii.iter()) {
             if !usable(r) {
@@ -106,7 +109,12 @@ impl<T: Real> Ellipsoid<T> {
     }
 }
 
-/// A radius the eSpace map can use: positive, finite, with a finite inverse.
+/// A radius the eSpace map can use: positive, finite, with a finite
+/// inverse, in `T` and as an `f64` too, since the world's BVH measures the
+/// eSpace reach in `f64` ([`crate::world::World::each_candidate`]): an MPFR
+/// radius below about `5.6e-309` has an `f64` inverse of infinity, which
+/// made every ball query empty and every wall missed (found by a review).
 fn usable<T: Real>(r: &T) -> bool {
-    *r > T::zero() && r.is_finite() && (T::one() / r).is_finite()
+    let f = r.to_f64();
+    *r > T::zero() && r.is_finite() && (T::one() / r).is_finite() && f.is_normal() && (1.0 / f).is_finite()
 }

@@ -271,7 +271,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         });
     }
     let world = World::<T>::new(scene.mesh.clone())?;
-    let reference = world.converted::<Mpfr<REFERENCE_BITS>>();
+    let reference = world.converted::<Mpfr<REFERENCE_BITS>>()?;
     let body = Ellipsoid::<T>::new(scene.radii)?;
     let ref_body = Ellipsoid::from_radii(to_reference(body.radii()))?;
     let mut opts = MoveOptions::new(cfg.response);

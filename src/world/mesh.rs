@@ -273,7 +273,14 @@ impl<T: Real> World<T> {
     /// `f32`): rounded to infinity, it would make every query meaningless.
     /// Vertices that no triangle uses are not checked.
     pub fn new(mesh: Arc<TriangleMesh>) -> Result<Self, Error> {
-        let vertices: Vec<Vec3<T>> = mesh.vertices.iter().map(from_f64).collect();
+        let vertices = mesh.vertices.iter().map(from_f64).collect();
+        Self::with_vertices(mesh, vertices)
+    }
+
+    /// The world of `mesh` whose vertices, rounded into `T` by any route,
+    /// are `vertices`: checks them as [`World::new`] does and measures the
+    /// conversion slack against the mesh's own `f64` vertices.
+    fn with_vertices(mesh: Arc<TriangleMesh>, vertices: Vec<Vec3<T>>) -> Result<Self, Error> {
         // Only the vertices of triangles matter (a file may list others).
         let mut used = vec![false; vertices.len()];
         mesh.triangles.iter().flatten().for_each(|&i| used[i as usize] = true);
@@ -294,12 +301,18 @@ impl<T: Real> World<T> {
 
     /// The same world in another backend `U`, converted from this world's
     /// stored values (through MPFR, exactly when `U` has at least as many
-    /// bits), so `U` sees the very numbers `T` computed with.
+    /// bits), so `U` sees the very numbers `T` computed with. The
+    /// conversion slack is measured again: a narrower `U` rounds the
+    /// vertices further from the `f64` ones the BVH's boxes hold (keeping
+    /// `T`'s slack, a review found box queries in `Mpfr<11>` missing
+    /// triangles).
+    ///
+    /// # Errors
+    /// As [`World::new`], when a vertex overflows `U`.
     #[cfg(feature = "mpfr")]
-    #[must_use]
-    pub fn converted<U: Real>(&self) -> World<U> {
+    pub fn converted<U: Real>(&self) -> Result<World<U>, Error> {
         let vertices = self.vertices.iter().map(|v| v.map(|x| U::from_rug(&x.to_rug()))).collect();
-        World { mesh: self.mesh.clone(), vertices, slack: self.slack }
+        World::with_vertices(self.mesh.clone(), vertices)
     }
 
     /// The `f64` mesh this world was made from.
@@ -364,7 +377,11 @@ impl<T: Real> World<T> {
     /// per-axis radii, and a radius in units of those radii: an eSpace ball),
     /// only those of the BVH's leaves that also come within it. Never misses
     /// a triangle that meets both: the ball is widened by the conversion
-    /// slack and the rounding of its centre to `f64`.
+    /// slack and the rounding of its centre to `f64`, both per coordinate,
+    /// so by their sum times the length of the scale vector (`sqrt(3)`
+    /// times the largest scale for a sphere; the largest scale alone let a
+    /// vertex within reach escape in `Mpfr<8>`, whose slack no `f32` leaf
+    /// box hides: a review).
     pub fn each_candidate(
         &self,
         min: &Vec3<T>,
@@ -378,7 +395,7 @@ impl<T: Real> World<T> {
             let centre = Vector3::from_fn(|i, _| centre[i].to_f64());
             let scale = Vector3::from_fn(|i, _| 1.0 / radii[i].to_f64());
             let off = self.slack + centre.amax() * f64::EPSILON;
-            Ball { centre, scale, radius: radius.to_f64() + off * scale.max() }
+            Ball { centre, scale, radius: radius.to_f64() + off * scale.norm() }
         });
         self.mesh.bvh.query(&bounds, ball.as_ref(), visit);
     }
