@@ -30,12 +30,13 @@
 //! velocity, in radii) below about 30; the soups are lone triangles and
 //! folds (no slots, no coincident layers) and the displacements stay below
 //! 0.02 radii per pass. The fuzz targets cover the whole documented range;
-//! the regimes left out here are where the campaign found the robust code
-//! failing (docs/fuzzing.md, "Campaign results": F1, vertex and edge entry
-//! times losing accuracy like `u s^2`; F2, slides leaving the frame's
-//! candidate box; F3, slots narrower than the padding; F4, coincident
-//! layers), so that `cargo test` stays a check of what is meant to hold
-//! rather than a standing failure. Widen them as those are fixed.
+//! the regimes left out here are those of the first campaign's findings
+//! (docs/fuzzing.md, "Notes per finding": F1, vertex and edge entry times
+//! losing accuracy like `u s^2`, F2, slides leaving the frame's candidate
+//! box, and F4, coincident layers, all fixed since; F3, slots narrower
+//! than the padding, outside the documented range), so that `make test`
+//! stays a check of what is meant to hold; the fuzz targets and
+//! `tests/regressions/` cover the fixed regimes at their full range.
 #![cfg(all(feature = "mpfr", feature = "lab"))]
 
 #[allow(dead_code)]

@@ -195,7 +195,7 @@ impl<T: Real> Candidate<T> {
     /// Always inlined, so that the gather writes the candidate once, where
     /// it lives: called, the triangle went through the stack with narrow
     /// stores read back by wide loads (a store-forwarding stall) and the
-    /// result was copied (`docs/performance.md`, seventeenth session).
+    /// result was copied (`docs/performance.md`, History, session 17).
     #[inline(always)]
     fn with_bounds(index: u32, triangle: Triangle<T>, active: ActiveFeatures, lo: Vec3<T>, hi: Vec3<T>) -> Self {
         let (a, b, c) = (&triangle.a, &triangle.b, &triangle.c);
