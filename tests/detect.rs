@@ -536,3 +536,20 @@ fn a_world_converted_to_fewer_bits_widens_its_queries() {
         assert!(found.contains(&i), "triangle {i} not found by a box around its own vertices");
     }
 }
+
+/// The stable entry root: `c / q` for an approaching body, `None` for one
+/// that does not approach or never reaches, and `None` for a NaN
+/// discriminant, which compared neither below nor at zero and gave a NaN
+/// time (a review); an overflowed discriminant gives the time 0, a touch
+/// that stops the body.
+#[test]
+fn stable_entry_root_cases() {
+    use sweepslide::detect::roots::stable_entry_root;
+    // t^2 - 4t + 3 = 0 (half_b = -2, disc = 4 - 3 = 1): the entry at 1.
+    assert_eq!(stable_entry_root(&-2.0f64, &3.0, &1.0), Some(1.0));
+    assert_eq!(stable_entry_root(&2.0f64, &3.0, &1.0), None, "moving away");
+    assert_eq!(stable_entry_root(&-2.0f64, &3.0, &-1.0), None, "never reaches");
+    assert_eq!(stable_entry_root(&-1.0f64, &1.0, &f64::NAN), None);
+    assert_eq!(stable_entry_root(&f64::NAN, &1.0, &1.0), None);
+    assert_eq!(stable_entry_root(&-1.0f32, &1.0, &f32::INFINITY), Some(0.0));
+}

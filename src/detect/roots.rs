@@ -50,9 +50,17 @@ pub fn textbook_lowest_root<T: Real>(a: &T, b: &T, c: &T, max_r: &T) -> Option<T
 /// cancellation-free forms used by [`super::sweep_robust`]). There is no
 /// division by `a`, so a vanishing `a` (zero velocity, motion parallel to an
 /// edge) needs no special case. Rounding: a few `u` relative in the time.
+///
+/// Non-finite inputs: a NaN `half_b` or `disc` gives `None` (no entry
+/// is claimed from a meaningless discriminant). A `disc` that overflowed
+/// to infinity (an edge longer than about `4e9` radii in `f32`, far
+/// beyond the documented range) gives the time 0: a touch at the start,
+/// which stops the body rather than letting it through. `c <= 0` (the
+/// body already within reach) is the caller's case to handle first; given
+/// one, the result is not an entry time.
 #[must_use]
 pub fn stable_entry_root<T: Real>(half_b: &T, c: &T, disc: &T) -> Option<T> {
-    if !(*half_b < T::zero()) || *disc < T::zero() {
+    if !(*half_b < T::zero()) || !(*disc >= T::zero()) {
         return None;
     }
     let q = disc.sqrt() - half_b;
