@@ -460,12 +460,68 @@ fn obj_missing_file_is_io_error() {
     }
 }
 
+/// A file without faces names itself (with several meshes in a report,
+/// `Error::EmptyMesh` alone did not say which: a review).
 #[test]
-fn obj_empty_file_is_empty_mesh() {
-    let r = TriangleMesh::from_obj_str("", Path::new("x.obj"));
-    assert_eq!(r.unwrap_err(), Error::EmptyMesh);
-    let r = TriangleMesh::from_obj_str(&format!("# only vertices\n{V4}vn 0 0 1\n"), Path::new("x.obj"));
-    assert_eq!(r.unwrap_err(), Error::EmptyMesh);
+fn obj_file_without_faces_names_its_path() {
+    obj_error("", 0, "no face");
+    obj_error(&format!("# only vertices\n{V4}vn 0 0 1\n"), 6, "no face");
+}
+
+/// A concave polygon whose fan from its first corner folds over itself is
+/// refused with its line: the fan covered the notch twice and area outside
+/// the polygon (an arrowhead of area 1 became triangles of area 3, found by
+/// a review). A polygon star-shaped around its first corner, a non-planar
+/// one, and one with a corner on a side (whose collinear fan triangle is
+/// rounding noise, skipped as degenerate) are kept.
+#[test]
+fn obj_concave_polygon_whose_fan_folds_is_refused() {
+    let arrow = "v 0 0 0\nv 2 0 -1\nv 1 0 0\nv 2 0 1\n";
+    obj_error(&format!("{arrow}f 2 3 4 1\n"), 5, "concave");
+    // The same arrowhead around its reflex corner: a valid fan.
+    let mesh = TriangleMesh::from_obj_str(&format!("{arrow}f 3 4 1 2\n"), Path::new("x.obj")).unwrap();
+    assert_eq!(mesh.triangles(), &[[2, 3, 0], [2, 0, 1]]);
+    // A warped quad.
+    let warped = "v 0 0 0\nv 1 0 0.2\nv 1 1 0\nv 0 1 0.2\nf 1 2 3 4\n";
+    assert_eq!(TriangleMesh::from_obj_str(warped, Path::new("x.obj")).unwrap().len(), 2);
+    // A square with a corner on its first side, seen from the far side's
+    // corner 0.1 / 3 off the grid (rounding in every cross product).
+    let side = "v 0.1 0.3 0\nv 0.1 0.2 0\nv 0.1 0.1 0\nv 0.9 0.1 0\nv 0.9 0.3 0\nf 1 2 3 4 5\n";
+    let mesh = TriangleMesh::from_obj_str(side, Path::new("x.obj")).unwrap();
+    assert_eq!((mesh.len(), mesh.skipped().len()), (2, 1));
+}
+
+/// Free-form geometry is refused like lines and points, not dropped; the
+/// statements that carry no collision geometry are counted by keyword with
+/// their first line, and reported in the load notes.
+#[test]
+fn obj_free_form_is_refused_and_ignored_statements_are_counted() {
+    obj_error(&format!("{V4}f 1 2 3\ncstype bspline\ndeg 3 3\nsurf 0 1 0 1 1 2 3 4\n"), 8, "`surf`: free-form");
+    obj_error(&format!("{V4}curv 0 1 1 2\n"), 5, "`curv`");
+    let text = format!("o thing\n{V4}vn 0 0 1\nvn 0 0 1\ns off\nf 1//1 2//2 3//1\n");
+    let mesh = TriangleMesh::from_obj_str(&text, Path::new("x.obj")).unwrap();
+    let ignored: Vec<_> = mesh.ignored().iter().map(|i| (i.keyword.as_str(), i.count, i.first_line)).collect();
+    assert_eq!(ignored, [("o", 1, 1), ("vn", 2, 6), ("s", 1, 8)]);
+    let notes = mesh.load_notes("x.obj");
+    assert_eq!(notes.len(), 1, "{notes:?}");
+    assert!(notes[0].contains("2 `vn` (first on line 6)"), "{notes:?}");
+    assert!(
+        TriangleMesh::from_obj_str(&format!("{V4}f 1 2 3\n"), Path::new("x.obj")).unwrap().load_notes("x").is_empty()
+    );
+}
+
+/// A triangle whose sides overflow `f64` says so, instead of calling its
+/// vertices collinear (a review).
+#[test]
+fn a_triangle_whose_sides_overflow_says_so() {
+    let v = vec![[-1e308, 0.0, 0.0], [1e308, 0.0, 0.0], [0.0, 1e308, 0.0]];
+    match TriangleMesh::new(v, vec![[0, 1, 2]]) {
+        Err(Error::InvalidArgument { what, message }) => {
+            assert_eq!(what, "triangle 0");
+            assert!(message.contains("overflow"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]

@@ -30,11 +30,11 @@ fn two_shards_merged_give_the_unsharded_results() {
         e.index = i;
     }
     let info = sweepslide::report::matrix::MatrixInfo { runs: picked.len(), ..info };
-    let whole = Runs { info: info.clone(), records: run_entries(&picked, 2, &|| {}).unwrap() };
+    let whole = Runs { info: info.clone(), records: run_entries(&picked, 2, &|| {}, &|_| {}).unwrap() };
     let shards: Vec<Runs> = (1..=2)
         .map(|k| {
             let part = shard(picked.clone(), k, 2).unwrap();
-            Runs { info: info.clone(), records: run_entries(&part, 1, &|| {}).unwrap() }
+            Runs { info: info.clone(), records: run_entries(&part, 1, &|| {}, &|_| {}).unwrap() }
         })
         .collect();
     assert!(shards.iter().all(|s| !s.records.is_empty()));
@@ -60,7 +60,7 @@ fn a_shard_whose_run_ends_with_a_nan_position_is_written_read_and_merged() {
         e.index = i;
     }
     let info = sweepslide::report::matrix::MatrixInfo { runs: picked.len(), ..info };
-    let runs = Runs { info, records: run_entries(&picked, 1, &|| {}).unwrap() };
+    let runs = Runs { info, records: run_entries(&picked, 1, &|| {}, &|_| {}).unwrap() };
     let nan_ended = |runs: &Runs| {
         runs.records
             .iter()

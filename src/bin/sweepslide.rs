@@ -246,18 +246,12 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
     Ok(scene)
 }
 
-/// Says on standard error which triangles of `scene` were left out (a
-/// file's invalid faces, or those an offset's rounding collapsed).
+/// Says on standard error what loading `scene` left out (a file's invalid
+/// faces, those an offset's rounding collapsed, the OBJ statements that
+/// carry no collision geometry).
 fn warn_skipped(scene: &Scene, what: &str) {
-    let skipped = scene.mesh.skipped();
-    if !skipped.is_empty() {
-        eprintln!("warning: {} triangle(s) of {what} skipped:", skipped.len());
-        for e in skipped.iter().take(5) {
-            eprintln!("  {e}");
-        }
-        if skipped.len() > 5 {
-            eprintln!("  ... and {} more", skipped.len() - 5);
-        }
+    for line in scene.mesh.load_notes(what) {
+        eprintln!("{line}");
     }
 }
 
@@ -391,7 +385,7 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
         bar
     });
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let records = run_entries(&entries, args.jobs, &|| {
+    let progress = || {
         let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         match &bar {
             Some(b) => b.inc(1),
@@ -400,7 +394,12 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
             }
             None => {}
         }
-    })?;
+    };
+    let note = |line: &str| match &bar {
+        Some(b) => b.println(line),
+        None => eprintln!("{line}"),
+    };
+    let records = run_entries(&entries, args.jobs, &progress, &note)?;
     if let Some(b) = bar {
         b.finish();
     }

@@ -78,7 +78,9 @@ impl Triangle<f64> {
     /// rounding noise of the cross product.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] or [`Error::DegenerateTriangle`], naming `index`.
+    /// [`Error::NonFinite`] or [`Error::DegenerateTriangle`], naming `index`;
+    /// [`Error::InvalidArgument`] when a side overflows `f64` (finite
+    /// vertices more than about `1.8e308` apart).
     pub fn validate(&self, index: usize) -> Result<(), Error> {
         for (i, v) in [&self.a, &self.b, &self.c].into_iter().enumerate() {
             if let Some(bad) = v.iter().find(|x| !x.is_finite()) {
@@ -90,6 +92,14 @@ impl Triangle<f64> {
         // 1e160) nor underflow (sides of 1e-170), which would have called
         // a good triangle collinear.
         let (ab, ac) = (self.b - self.a, self.c - self.a);
+        if !(ab.iter().chain(ac.iter()).chain((self.c - self.b).iter()).all(|x| x.is_finite())) {
+            return Err(Error::InvalidArgument {
+                what: format!("triangle {index}"),
+                message: "its sides overflow f64 (vertices more than about 1.8e308 apart along an axis): \
+                          scale the mesh down"
+                    .into(),
+            });
+        }
         let largest = ab.amax().max(ac.amax());
         let exponent = if largest > 0.0 { (largest.log2().floor() as i32).clamp(-1022, 1022) } else { 0 };
         let scale = f64::from_bits(((1023 - exponent) as u64) << 52);

@@ -206,11 +206,13 @@ pub fn parse_shard(s: &str) -> Result<(usize, usize), Error> {
 }
 
 /// Builds each distinct scene of `entries` once and pairs every entry with
-/// its run configuration.
+/// its run configuration; `note` gets each mesh file's load notes
+/// ([`crate::world::TriangleMesh::load_notes`]: skipped faces, ignored
+/// statements) once, when it is read.
 ///
 /// # Errors
 /// Whatever building a scene or loading a mesh reports.
-pub fn configs(entries: &[Entry]) -> Result<Vec<RunConfig>, Error> {
+pub fn configs(entries: &[Entry], note: &dyn Fn(&str)) -> Result<Vec<RunConfig>, Error> {
     let mut cache: HashMap<(SceneSource, u64, usize), Arc<Scene>> = HashMap::new();
     let mut meshes: HashMap<PathBuf, Scene> = HashMap::new();
     entries
@@ -229,6 +231,7 @@ pub fn configs(entries: &[Entry]) -> Result<Vec<RunConfig>, Error> {
                             Some(s) => s.clone(),
                             None => {
                                 let s = Scene::from_obj(path)?;
+                                s.mesh.load_notes(&path.display().to_string()).iter().for_each(|l| note(l));
                                 meshes.insert(path.clone(), s.clone());
                                 s
                             }

@@ -42,13 +42,20 @@ fn io(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Io { path: path.to_path_buf(), message: e.to_string() }
 }
 
-/// Runs `entries` on `jobs` threads, calling `progress` after each run.
+/// Runs `entries` on `jobs` threads, calling `progress` after each run and
+/// `note` with what loading each mesh file left out (see
+/// [`matrix::configs`]).
 ///
 /// # Errors
 /// Building a scene or loading a mesh can fail; a failing *run* is kept as
 /// a record with its error instead.
-pub fn run_entries(entries: &[Entry], jobs: usize, progress: &(dyn Fn() + Sync)) -> Result<Vec<Record>, Error> {
-    let configs = configs(entries)?;
+pub fn run_entries(
+    entries: &[Entry],
+    jobs: usize,
+    progress: &(dyn Fn() + Sync),
+    note: &dyn Fn(&str),
+) -> Result<Vec<Record>, Error> {
+    let configs = configs(entries, note)?;
     let outputs = run_all(&configs, jobs, &|_| progress())?;
     Ok(entries
         .iter()

@@ -1,6 +1,6 @@
 //! The validated mesh (`f64`) and its conversion into a backend.
 
-use super::obj::parse_obj;
+use super::obj::{Ignored, parse_obj};
 use super::{Aabb, ActiveFeatures, Adjacency, Ball, Bvh};
 use crate::geom::{Triangle, Vec3, from_f64};
 use crate::{Error, Real};
@@ -24,6 +24,7 @@ pub struct TriangleMesh {
     bvh: Bvh,
     bounds: Aabb,
     skipped: Vec<Error>,
+    ignored: Vec<Ignored>,
 }
 
 /// Default largest angle between two triangles' normals for their shared
@@ -76,8 +77,8 @@ impl TriangleMesh {
     ///
     /// # Errors
     /// [`Error::Io`] if the file cannot be read, [`Error::Obj`] (with the
-    /// line number) if it is malformed or not UTF-8 text, [`Error::EmptyMesh`] if it holds no
-    /// face, [`Error::NoValidTriangle`] if no face is valid.
+    /// line number) if it is malformed, not UTF-8 text or holds no face,
+    /// [`Error::NoValidTriangle`] if no face is valid.
     pub fn from_obj_file(path: &Path) -> Result<Self, Error> {
         let bytes = std::fs::read(path).map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })?;
         let text = String::from_utf8(bytes).map_err(|e| {
@@ -99,13 +100,22 @@ impl TriangleMesh {
     /// As [`TriangleMesh::from_obj_file`].
     pub fn from_obj_str(text: &str, path: &Path) -> Result<Self, Error> {
         let obj = parse_obj(text, path)?;
+        if obj.triangles.is_empty() {
+            return Err(Error::Obj {
+                path: path.to_path_buf(),
+                line: text.lines().count(),
+                message: "end of file: no face (`f` statement), nothing to collide with".into(),
+            });
+        }
         let lines = obj.lines;
         let (mesh, skipped) = Self::build(obj.vertices, obj.triangles, |t, e| Error::Obj {
             path: path.to_path_buf(),
             line: lines[t],
             message: e.to_string(),
         });
-        Self::with_skipped(mesh, skipped)
+        let mut mesh = Self::with_skipped(mesh, skipped)?;
+        mesh.ignored = obj.ignored;
+        Ok(mesh)
     }
 
     /// Validates and indexes; invalid triangles go to the returned list
@@ -157,6 +167,7 @@ impl TriangleMesh {
             triangles: kept,
             bounds,
             skipped: Vec::new(),
+            ignored: Vec::new(),
         };
         (Some(mesh), skipped)
     }
@@ -245,6 +256,37 @@ impl TriangleMesh {
     #[must_use]
     pub fn skipped(&self) -> &[Error] {
         &self.skipped
+    }
+
+    /// The statements of the OBJ file this mesh was read from that carry
+    /// no collision geometry and were not used (empty for other meshes).
+    #[must_use]
+    pub fn ignored(&self) -> &[Ignored] {
+        &self.ignored
+    }
+
+    /// What loading left out, as lines for a user: the skipped triangles
+    /// (the first five, then a count) and the ignored OBJ statements, per
+    /// keyword; `what` names the mesh. Empty when nothing was left out.
+    #[must_use]
+    pub fn load_notes(&self, what: &str) -> Vec<String> {
+        let mut notes = Vec::new();
+        if !self.skipped.is_empty() {
+            notes.push(format!("warning: {} triangle(s) of {what} skipped:", self.skipped.len()));
+            notes.extend(self.skipped.iter().take(5).map(|e| format!("  {e}")));
+            if self.skipped.len() > 5 {
+                notes.push(format!("  ... and {} more", self.skipped.len() - 5));
+            }
+        }
+        if !self.ignored.is_empty() {
+            let each: Vec<String> = self
+                .ignored
+                .iter()
+                .map(|i| format!("{} `{}` (first on line {})", i.count, i.keyword, i.first_line))
+                .collect();
+            notes.push(format!("note: {what}: ignored, carrying no collision geometry: {}", each.join(", ")));
+        }
+        notes
     }
 }
 

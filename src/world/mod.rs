@@ -15,4 +15,4 @@ mod obj;
 pub use adjacency::{ActiveFeatures, Adjacency};
 pub use bvh::{Aabb, Ball, Bvh};
 pub use mesh::{INTERNAL_EDGE_DEGREES, TriangleMesh, World};
-pub use obj::parse_obj;
+pub use obj::{Ignored, parse_obj};

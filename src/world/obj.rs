@@ -7,11 +7,17 @@
 //! form, negative indices counted from the end; the texture and normal
 //! indices are checked like the vertex's, against the `vt` and `vn`
 //! statements read so far, and not used). Polygons are
-//! triangulated as a fan around their first vertex. Statements that carry no
-//! collision geometry (`vt`, `vn`, `o`, `g`, `s`, `usemtl`, `mtllib`, ...)
-//! are accepted and ignored; `l` and `p` (lines and points) are geometry a
-//! swept body cannot collide with and are rejected with their line number
-//! rather than dropped silently.
+//! triangulated as a fan around their first vertex; a polygon whose fan
+//! folds over itself (a concave polygon seen from a vertex that does not
+//! see all of it) is rejected with its line number, since the fan would
+//! cover area the polygon does not. A non-planar polygon's fan is a valid
+//! surface and is kept. Statements that carry no collision geometry
+//! (`vt`, `vn`, `o`, `g`, `s`, `usemtl`, `mtllib`, ...) are accepted and
+//! counted in [`ObjData::ignored`], which the command line reports; `l`
+//! and `p` (lines and points) are geometry a swept body cannot collide
+//! with, and `curv`, `curv2` and `surf` free-form geometry this reader
+//! does not evaluate: both are rejected with their line number rather
+//! than dropped.
 
 use crate::Error;
 use std::path::Path;
@@ -25,6 +31,21 @@ pub struct ObjData {
     pub triangles: Vec<[u32; 3]>,
     /// For each triangle, the 1-based line of the face it came from.
     pub lines: Vec<usize>,
+    /// The statements read and not used, by keyword, in order of first
+    /// appearance.
+    pub ignored: Vec<Ignored>,
+}
+
+/// Statements of one keyword that an OBJ file gave and the reader did not
+/// use (they carry no collision geometry).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Ignored {
+    /// The keyword (`vn`, `usemtl`, ...).
+    pub keyword: String,
+    /// How many statements had it.
+    pub count: usize,
+    /// The 1-based line of the first.
+    pub first_line: usize,
 }
 
 /// Parses OBJ text; `path` only names the source in errors. A leading
@@ -33,7 +54,8 @@ pub struct ObjData {
 /// # Errors
 /// [`Error::Obj`] with the 1-based line number for a malformed number, a
 /// vertex with fewer than three coordinates, a face with fewer than three
-/// vertices, an index of zero or out of range, or a line/point element.
+/// vertices or whose fan folds over itself, an index of zero or out of
+/// range, a line/point element or free-form geometry.
 pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
     let mut data = ObjData::default();
     // `vt` and `vn` statements read so far, for the faces' other indices.
@@ -74,6 +96,17 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
                 if corners.len() < 3 {
                     return Err(err(line, format!("face needs at least 3 vertices, found {}", corners.len())));
                 }
+                if let Some(k) = folded_fan(&data.vertices, &corners) {
+                    return Err(err(
+                        line,
+                        format!(
+                            "this {}-sided polygon is concave as seen from its first vertex: its fan's triangle {k} \
+                             faces against the polygon and would cover area outside it; split the polygon into \
+                             triangles or convex polygons",
+                            corners.len()
+                        ),
+                    ));
+                }
                 for k in 1..corners.len() - 1 {
                     data.triangles.push([corners[0], corners[k], corners[k + 1]]);
                     data.lines.push(line);
@@ -82,14 +115,55 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
             "l" | "p" => {
                 return Err(err(line, format!("`{keyword}` elements (lines, points) are not collision geometry")));
             }
-            "vt" => textures += 1,
-            "vn" => normals += 1,
-            "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "cstype" | "deg" | "curv" | "surf" | "parm" | "end"
-            | "lod" | "bevel" | "c_interp" | "d_interp" | "shadow_obj" | "trace_obj" | "maplib" | "usemap" | "mg" => {}
+            "curv" | "curv2" | "surf" => {
+                return Err(err(
+                    line,
+                    format!("`{keyword}`: free-form curves and surfaces are not supported; export them as polygons"),
+                ));
+            }
+            "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "cstype" | "deg" | "parm" | "end" | "lod"
+            | "bevel" | "c_interp" | "d_interp" | "shadow_obj" | "trace_obj" | "maplib" | "usemap" | "mg" => {
+                textures += usize::from(keyword == "vt");
+                normals += usize::from(keyword == "vn");
+                match data.ignored.iter_mut().find(|i| i.keyword == keyword) {
+                    Some(i) => i.count += 1,
+                    None => data.ignored.push(Ignored { keyword: keyword.to_string(), count: 1, first_line: line }),
+                }
+            }
             other => return Err(err(line, format!("unknown statement `{other}`"))),
         }
     }
     Ok(data)
+}
+
+/// For a polygon of more than three corners, the first triangle `k`
+/// (counted from one) of its fan around corner 0 whose area vector points against the
+/// polygon's (the sum of the fan's, Newell's normal): the fan then covers
+/// some area twice and area outside the polygon. `None` for a fan whose
+/// triangles all face the same side (a convex polygon, or one star-shaped
+/// around its first corner, planar or not).
+///
+/// A fan triangle whose corners are collinear (a corner on the polygon's
+/// side, as T-junction repairs leave) has an area vector of rounding noise
+/// only, `16 eps` times its two sides' lengths at most, pointing anywhere:
+/// it counts as folded only beyond that (it is skipped as degenerate
+/// later).
+fn folded_fan(vertices: &[[f64; 3]], corners: &[u32]) -> Option<usize> {
+    if corners.len() <= 3 {
+        return None;
+    }
+    let at = |i: u32| nalgebra::Vector3::from(vertices[i as usize]);
+    let origin = at(corners[0]);
+    let fan: Vec<_> = corners[1..]
+        .windows(2)
+        .map(|w| {
+            let (e1, e2) = (at(w[0]) - origin, at(w[1]) - origin);
+            (e1.cross(&e2), 16.0 * f64::EPSILON * e1.norm() * e2.norm())
+        })
+        .collect();
+    let total: nalgebra::Vector3<f64> = fan.iter().map(|(a, _)| a).sum();
+    let length = total.norm();
+    fan.iter().position(|(a, noise)| a.dot(&total) < -noise * length).map(|k| k + 1)
 }
 
 /// Resolves one face corner (`v`, `v/vt`, `v//vn`, `v/vt/vn`) to a 0-based
