@@ -594,6 +594,27 @@ fn obj_degenerate_face_is_skipped_with_its_line() {
 // Scene::from_case_file (fuzz cases as lab scenes)
 // ---------------------------------------------------------------------------
 
+/// The same folds at any scale the mesh accepts: the normals are taken
+/// from edges scaled by a power of two (unscaled, the cross product's
+/// square overflowed beyond sides of about 1e77 and underflowed below
+/// 1e-81, making flat edges active and, near the underflow, convex folds
+/// of 6 to 30 degrees internal: a review).
+#[test]
+fn internal_edges_are_found_at_any_scale() {
+    let (s, c) = 30f64.to_radians().sin_cos();
+    for scale in [1.77e-81, 1e-200, 1.0, 1e80, 1e300] {
+        let ridge = |fold: f64| {
+            let v = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [c, fold * s, 0.0]];
+            let v = v.iter().map(|p| p.map(|x| x * scale)).collect();
+            TriangleMesh::new(v, vec![[0, 1, 2], [1, 0, 3]]).unwrap()
+        };
+        let flat = |fold: f64| !ridge(fold).with_internal_edge_angle(31.0).unwrap().active(0).edge(0);
+        let active = |fold: f64| ridge(fold).active(0).edge(0);
+        assert!(flat(1.0) && flat(-1.0), "scale {scale:e}: a 30 degree fold within a 31 degree threshold");
+        assert!(active(1.0) != active(-1.0), "scale {scale:e}: one of the folds is convex, the other concave");
+    }
+}
+
 #[cfg(feature = "lab")]
 #[test]
 fn malformed_case_files_are_invalid_arguments_with_the_reason() {

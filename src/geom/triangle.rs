@@ -100,9 +100,7 @@ impl Triangle<f64> {
                     .into(),
             });
         }
-        let largest = ab.amax().max(ac.amax());
-        let exponent = if largest > 0.0 { (largest.log2().floor() as i32).clamp(-1022, 1022) } else { 0 };
-        let scale = f64::from_bits(((1023 - exponent) as u64) << 52);
+        let scale = unit_scale(ab.amax().max(ac.amax()));
         let (ab, ac) = (ab * scale, ac * scale);
         let area2 = norm_squared(&cross(&ab, &ac));
         let bound = 16.0 * f64::EPSILON;
@@ -119,15 +117,27 @@ impl Triangle<f64> {
     }
 }
 
+/// The power of two that scales `largest` (a positive finite magnitude)
+/// into `[1, 2)`, exactly; 1 for zero. Products of vectors scaled by it
+/// (cross products, squared lengths) neither overflow nor underflow for
+/// any finite `f64` input.
+#[must_use]
+pub(crate) fn unit_scale(largest: f64) -> f64 {
+    let exponent = if largest > 0.0 { (largest.log2().floor() as i32).clamp(-1022, 1022) } else { 0 };
+    f64::from_bits(((1023 - exponent) as u64) << 52)
+}
+
 /// The point of `tri` closest to `p`, and the feature it lies on.
 ///
 /// Voronoi-region classification by dot products (Ericson, *Real-Time
 /// Collision Detection*, 5.1.5). Rounding: each region test is a dot product
 /// or a difference of products of edge vectors with `p - vertex`; for points
 /// near a region boundary the feature may flip between neighbours, but the
-/// returned point is then close to both, so its distance error stays of the
-/// order of `u * (|edge|^2 + |p - a|^2)`. Pass coordinates relative to a
-/// nearby origin to keep them small.
+/// returned point is then close to both. The point's error is of the order
+/// of `u k (|edge| + |p - a|) + u |a|` (a length: `k` the triangle's shape
+/// factor, `|edge|^2 / (2 area)`, through the face coordinates' quotients,
+/// and the final `a + ab v` rounded relative to `|a|`). Pass coordinates
+/// relative to a nearby origin to keep `|a|` small.
 ///
 /// A triangle that is degenerate in this precision (two vertices equal,
 /// or all three collinear: a tiny triangle far from the origin in `f32`)

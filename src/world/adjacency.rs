@@ -139,7 +139,14 @@ impl Adjacency {
             .iter()
             .map(|t| {
                 let [a, b, c] = t.map(|i| vertices[i as usize]);
-                (b - a).cross(&(c - a)).normalize()
+                // Scaled exactly by a power of two first: the cross
+                // product's square overflowed beyond sides of about 1e77
+                // and underflowed below 1e-81, which turned internal edges
+                // active and, near the underflow, convex folds inactive (a
+                // review).
+                let (ab, ac) = (b - a, c - a);
+                let scale = crate::geom::unit_scale(ab.amax().max(ac.amax()));
+                (ab * scale).cross(&(ac * scale)).normalize()
             })
             .collect();
         let normal = |t: usize| normals[t];
@@ -159,10 +166,25 @@ impl Adjacency {
                     let (p, q) = (w[e], w[(e + 1) % 3]);
                     let same_way = (0..3).any(|k| wn[k] == p && wn[(k + 1) % 3] == q);
                     let m = if same_way { -normal(nb as usize) } else { normal(nb as usize) };
+                    // Concave: the neighbour rises above this triangle's
+                    // plane by more than `64 eps` of its own extent from
+                    // the edge, beyond the rounding of the rise (a few
+                    // `eps` of the extent). Relative, so every scale the
+                    // mesh accepts decides alike: the threshold was `1e-9`
+                    // times one vertex's distance but at least `1e-9`,
+                    // which depended on the vertex order and, below sides
+                    // of `1e-9`, called no fold concave (a review). Only a
+                    // fold beyond the internal-edge angle depends on it: a
+                    // sheet folded back onto itself is concave from the
+                    // side its far vertex rises towards, down to about
+                    // `1e-13` radians from closed (F20's was `5e-14` of
+                    // its `6.7e5` extent: `5.8e-14`).
                     let a = vertices[triangles[t][e] as usize];
-                    let rise =
-                        triangles[nb as usize].iter().map(|&v| n.dot(&(vertices[v as usize] - a))).fold(0.0, f64::max);
-                    let concave = rise > 1e-9 * (vertices[triangles[nb as usize][0] as usize] - a).norm().max(1.0);
+                    let (rise, extent) = triangles[nb as usize].iter().fold((0.0, 0.0), |(rise, extent), &v| {
+                        let d = vertices[v as usize] - a;
+                        (n.dot(&d).max(rise), d.amax().max(extent))
+                    });
+                    let concave = rise > 64.0 * f64::EPSILON * extent;
                     if !(n.dot(&m) >= cos_min || concave) {
                         bits |= 1 << e;
                     }
