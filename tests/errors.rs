@@ -464,7 +464,7 @@ fn obj_missing_file_is_io_error() {
 /// `Error::EmptyMesh` alone did not say which: a review).
 #[test]
 fn obj_file_without_faces_names_its_path() {
-    obj_error("", 0, "no face");
+    obj_error("", 1, "no face");
     obj_error(&format!("# only vertices\n{V4}vn 0 0 1\n"), 6, "no face");
 }
 

@@ -103,7 +103,7 @@ impl TriangleMesh {
         if obj.triangles.is_empty() {
             return Err(Error::Obj {
                 path: path.to_path_buf(),
-                line: text.lines().count(),
+                line: text.lines().count().max(1),
                 message: "end of file: no face (`f` statement), nothing to collide with".into(),
             });
         }
