@@ -14,8 +14,8 @@
 use rug::Float;
 use std::cmp::Ordering;
 use sweepslide::geom::{
-    Ellipsoid, Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, norm, norm_squared, normalize,
-    normalize_near_unit, vec3,
+    Ellipsoid, Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, max_abs, norm, norm_squared,
+    normalize, normalize_near_unit, vec3,
 };
 use sweepslide::real::with_precision;
 use sweepslide::{Mpfr, MpfrDyn, Real};
@@ -340,6 +340,13 @@ fn check_vec_helpers<T: Real>() {
     // a x b is orthogonal to a and b (exact here: small integers).
     assert_is(&dot(&cross(&a, &b), &a), 0.0);
     assert_is(&dot(&cross(&a, &b), &b), 0.0);
+    // max_abs: the largest magnitude or the floor, whichever is larger; a
+    // NaN component is passed over, as `max` passes over NaN.
+    assert_is(&max_abs(&b, T::zero()), 6.0);
+    assert_is(&max_abs(&vec3::<T>(-7.0, 2.0, -0.5), T::c(1.0)), 7.0);
+    assert_is(&max_abs(&vec3::<T>(-0.25, 0.5, -0.125), T::c(1.0)), 1.0);
+    assert_is(&max_abs(&vec3::<T>(f64::NAN, -3.0, 2.0), T::zero()), 3.0);
+    assert!(max_abs(&vec3::<T>(-0.0, 0.0, -0.0), T::zero()).is_zero());
     let c = vec3::<T>(2.0, -3.0, 6.0);
     assert_is(&norm_squared(&c), 49.0);
     assert_is(&norm(&c), 7.0);

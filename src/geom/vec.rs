@@ -69,7 +69,10 @@ pub fn norm<T: Real>(a: &Vec3<T>) -> T {
 #[must_use]
 pub fn normalize<T: Real>(a: &Vec3<T>) -> Option<Vec3<T>> {
     let n = norm(a);
-    if n > T::zero() && n.is_finite() {
+    // A norm is never negative: positive is finite and not zero (a test
+    // without a zero to compare with, which a heap-allocated backend
+    // would build on every call).
+    if n.is_finite() && !n.is_zero() {
         Some(Vector3::new(a.x.clone() / &n, a.y.clone() / &n, a.z.clone() / &n))
     } else {
         None
@@ -109,5 +112,5 @@ pub fn is_finite<T: Real>(a: &Vec3<T>) -> bool {
 #[inline]
 #[must_use]
 pub fn max_abs<T: Real>(a: &Vec3<T>, floor: T) -> T {
-    floor.max(a.x.abs()).max(a.y.abs()).max(a.z.abs())
+    floor.max_abs_of(&a.x).max_abs_of(&a.y).max_abs_of(&a.z)
 }

@@ -128,6 +128,14 @@ pub trait Real:
         if other > self { other } else { self }
     }
 
+    /// `self.max(other.abs())` (exact), for a running maximum of
+    /// magnitudes: a backend whose values live on the heap compares the
+    /// magnitudes first and builds `|other|` only when it wins.
+    #[must_use]
+    fn max_abs_of(self, other: &Self) -> Self {
+        self.max(other.abs())
+    }
+
     /// A value converted from `f64` (shorthand used by the algorithms for
     /// their constants, so every backend starts from the same bits).
     #[must_use]

@@ -188,6 +188,19 @@ impl<const BITS: u32> Real for Mpfr<BITS> {
     fn abs(&self) -> Self {
         Mpfr(Float::with_val(self.0.prec(), self.0.abs_ref()))
     }
+    fn max_abs_of(self, other: &Self) -> Self {
+        // A negative or NaN running maximum (never one the crate starts
+        // from) takes the plain way; otherwise `|other|` is compared with
+        // `self = |self|` and built only when it wins (a NaN `other`
+        // compares unordered and keeps `self`, as `max` does).
+        if self.0.is_nan() || self.0.is_sign_negative() {
+            return self.max(other.abs());
+        }
+        match other.0.cmp_abs(&self.0) {
+            Some(std::cmp::Ordering::Greater) => other.abs(),
+            _ => self,
+        }
+    }
     fn mul_add(&self, a: &Self, b: &Self) -> Self {
         Mpfr(Float::with_val(self.0.prec(), self.0.mul_add_ref(&a.0, &b.0)))
     }

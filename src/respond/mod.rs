@@ -372,7 +372,7 @@ pub fn move_body<T: Real>(
     frame.hood.gather(world, body, &reach)?;
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();
-    let still = |v: &Vec3<T>| v.iter().all(|x| *x == T::zero());
+    let still = |v: &Vec3<T>| v.iter().all(T::is_zero);
     if options.response == Response::Robust {
         if let Some(r) = robust::final_rounding::<T>(start_magnitude, reach.radius.to_f64(), &options.robust) {
             frame.band = T::c(2.0 * r);
