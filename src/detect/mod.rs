@@ -326,6 +326,12 @@ impl<T: Real> Neighbourhood<T> {
     /// to `origin`), far below the [`REACH_MARGIN`] that every reach carries
     /// beyond the unit radius; the world box and ball handed to the BVH are
     /// widened for the conversion to `f64` by [`World::each_candidate`].
+    /// That holds from about 10 bits of precision on. Below, the margin
+    /// itself rounds away (`1.05` is `1` in 2 to 4 bits) and the touching
+    /// tolerance exceeds it: in `Mpfr<2>` to `Mpfr<6>` a review found
+    /// random sweeps through the world missing triangles that the same
+    /// sweep against the triangle alone hits (none from 8 bits on), part of
+    /// why the robust response's guarantees need about 16 bits.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] naming a gathered triangle whose sides,
