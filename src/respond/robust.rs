@@ -121,9 +121,9 @@ pub struct RobustOptions {
     /// The bound of the final world position's rounding, in eSpace, per
     /// unit of `u (m + 2 travel)` (`m` the start's eSpace magnitude,
     /// `travel` how far the body may have gone; default `sqrt(3)`, the
-    /// bound derived for [`final_rounding`]). Where it can exceed half the
-    /// least padding the skin is checked after the rounding and the
-    /// resting band is twice the bound wider ([`super::Frame::band`]).
+    /// bound derived for it: see the module docs). Where it can exceed half
+    /// the least padding the skin is checked after the rounding and the
+    /// band in which a body counts as resting is twice the bound wider.
     /// Lowering it below `sqrt(3)` voids that check; the lab's `Mpfr<256>`
     /// replay scales it with the other `*_ulps` fields, so that it rests
     /// in the run's band.
