@@ -845,7 +845,7 @@ fn world_refuses_a_used_vertex_beyond_the_backends_range_and_ignores_an_unused_o
     let used = std::sync::Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [1, 3, 2]]).unwrap());
     match World::<f32>::new(used.clone()) {
         Err(Error::InvalidArgument { what, message }) => {
-            assert_eq!(what, "vertex 3");
+            assert_eq!(what, "vertex 3 (counted from 0: an OBJ file's `v` statement 4)");
             assert!(message.contains("overflows"), "{message}");
         }
         other => panic!("{:?}", other.map(|w| w.mesh().len())),

@@ -330,7 +330,7 @@ impl<T: Real> World<T> {
         if let Some(i) = used().find(|&i| !vertices[i].iter().all(Real::is_finite)) {
             let v = mesh.vertices[i];
             return Err(Error::InvalidArgument {
-                what: format!("vertex {i}"),
+                what: format!("vertex {i} (counted from 0: an OBJ file's `v` statement {})", i + 1),
                 message: format!("({:e}, {:e}, {:e}) overflows this precision", v.x, v.y, v.z),
             });
         }
