@@ -481,6 +481,15 @@ fn obj_concave_polygon_whose_fan_folds_is_refused() {
     // The same arrowhead around its reflex corner: a valid fan.
     let mesh = TriangleMesh::from_obj_str(&format!("{arrow}f 3 4 1 2\n"), Path::new("x.obj")).unwrap();
     assert_eq!(mesh.triangles(), &[[2, 3, 0], [2, 0, 1]]);
+    // Refused at every scale the mesh accepts (the fan's products were
+    // once unscaled, and the test blind beyond 1e77 and below 1e-81).
+    for scale in [1e-170, 1e-82, 1e77, 1e160] {
+        let arrow: String = [[0.0, 0.0, 0.0], [2.0, 0.0, -1.0], [1.0, 0.0, 0.0], [2.0, 0.0, 1.0]]
+            .iter()
+            .map(|p| format!("v {:e} {:e} {:e}\n", p[0] * scale, p[1] * scale, p[2] * scale))
+            .collect();
+        obj_error(&format!("{arrow}f 2 3 4 1\n"), 5, "concave");
+    }
     // A warped quad.
     let warped = "v 0 0 0\nv 1 0 0.2\nv 1 1 0\nv 0 1 0.2\nf 1 2 3 4\n";
     assert_eq!(TriangleMesh::from_obj_str(warped, Path::new("x.obj")).unwrap().len(), 2);
@@ -612,6 +621,20 @@ fn internal_edges_are_found_at_any_scale() {
         let active = |fold: f64| ridge(fold).active(0).edge(0);
         assert!(flat(1.0) && flat(-1.0), "scale {scale:e}: a 30 degree fold within a 31 degree threshold");
         assert!(active(1.0) != active(-1.0), "scale {scale:e}: one of the folds is convex, the other concave");
+    }
+    // A convex right-angled ridge between a sliver and a wall, turned
+    // every way: the sliver's normal is tilted by `eps / sin` of its angle,
+    // which lifted the shared edge's own ends and called the ridge concave
+    // (internal) in half the orientations for a sliver `1e-6` thin.
+    for k in 0..200 {
+        let (a, b) = (0.3 + 0.005 * f64::from(k), 0.7 + 0.01 * f64::from(k));
+        let turn = |p: [f64; 3]| {
+            let (x, y, z) = (p[0] * a.cos() - p[1] * a.sin(), p[0] * a.sin() + p[1] * a.cos(), p[2]);
+            [x, y * b.cos() - z * b.sin(), y * b.sin() + z * b.cos()]
+        };
+        let v = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 1e-6, 0.0], [0.5, 0.0, -1.0]].map(turn);
+        let ridge = TriangleMesh::new(v.to_vec(), vec![[0, 1, 2], [1, 0, 3]]).unwrap();
+        assert!(ridge.active(0).edge(0) && ridge.active(1).edge(0), "turn {k}: a convex ridge is a real edge");
     }
 }
 

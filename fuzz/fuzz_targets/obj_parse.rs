@@ -18,7 +18,7 @@ fuzz_target!(|data: &[u8]| {
     let parsed = parse_obj(&text, path);
     match TriangleMesh::from_obj_str(&text, path) {
         // A file that parses without a face names itself at its last line.
-        Err(Error::Obj { line, message }) if parsed.as_ref().is_ok_and(|d| d.triangles.is_empty()) => {
+        Err(Error::Obj { line, message, .. }) if parsed.as_ref().is_ok_and(|d| d.triangles.is_empty()) => {
             assert_eq!(line, text.lines().count().max(1), "a face-less file's error at line {line}");
             assert!(message.contains("no face"), "{message}");
             let data = parsed.expect("checked above");

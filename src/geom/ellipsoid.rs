@@ -27,8 +27,8 @@ impl<T: Real> Ellipsoid<T> {
     /// # Errors
     /// [`Error::InvalidRadius`] when a radius is zero, negative, NaN or
     /// infinite, or does not survive the conversion to `T` as a positive
-    /// finite value with a finite inverse (in `T` and in `f64`: from about
-    /// `5.6e-309` to `1.8e308`).
+    /// finite value with a finite inverse (in `T` and in `f64`: a normal
+    /// `f64`, from about `2.2e-308` to `1.8e308`).
     pub fn new(radii: [f64; 3]) -> Result<Self, Error> {
         let converted = Vector3::new(T::from_f64(radii[0]), T::from_f64(radii[1]), T::from_f64(radii[2]));
         for ((axis, r), rt) in ['x', 'y', 'z'].into_iter().zip(radii).zip(converted.iter()) {
@@ -113,7 +113,8 @@ impl<T: Real> Ellipsoid<T> {
 /// inverse, in `T` and as an `f64` too, since the world's BVH measures the
 /// eSpace reach in `f64` ([`crate::world::World::each_candidate`]): an MPFR
 /// radius below about `5.6e-309` has an `f64` inverse of infinity, which
-/// made every ball query empty and every wall missed (found by a review).
+/// made every ball query empty and every wall missed (found by a review);
+/// the radius must be a normal `f64` (at least about `2.2e-308`).
 fn usable<T: Real>(r: &T) -> bool {
     let f = r.to_f64();
     *r > T::zero() && r.is_finite() && (T::one() / r).is_finite() && f.is_normal() && (1.0 / f).is_finite()

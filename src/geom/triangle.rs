@@ -118,9 +118,11 @@ impl Triangle<f64> {
 }
 
 /// The power of two that scales `largest` (a positive finite magnitude)
-/// into `[1, 2)`, exactly; 1 for zero. Products of vectors scaled by it
-/// (cross products, squared lengths) neither overflow nor underflow for
-/// any finite `f64` input.
+/// into `[1, 2)`, exactly (a subnormal one, below `2^-1022`, only as far
+/// as `2^1022` takes it); 1 for zero or NaN, `2^-1022` for infinity.
+/// Products of vectors
+/// scaled by it (cross products, squared lengths) neither overflow nor
+/// underflow for any finite `f64` input.
 #[must_use]
 pub(crate) fn unit_scale(largest: f64) -> f64 {
     let exponent = if largest > 0.0 { (largest.log2().floor() as i32).clamp(-1022, 1022) } else { 0 };

@@ -477,20 +477,62 @@ fn restore_skin<T: Real>(
     opts: &RobustOptions,
 ) -> Vec3<T> {
     for _ in 0..SKIN_ROUNDS {
-        let Some(near) = nearest else { break };
-        let (gap, pad) = (near.dist - T::one(), near.pad);
-        if !(gap < pad.clone() * T::c(0.5)) {
-            break;
-        }
+        let Some(near) = nearest.as_ref().filter(|n| n.short()) else { return p };
+        let gap = near.dist.clone() - T::one();
         let Some(dir) = normalize(&(&p - &near.point)) else { break };
-        let pushed = push_out(frame, p.clone(), &dir, pad - &gap, &gap.max(T::zero()), opts);
+        let pushed = push_out(frame, p.clone(), &dir, near.pad.clone() - &gap, &gap.max(T::zero()), opts);
         if pushed == p {
             break;
         }
         p = pushed;
         nearest = scan_resting(frame, &p, opts);
     }
-    p
+    skin_by_shortest_push(frame, p, nearest, opts)
+}
+
+/// The end of [`restore_skin`] where pushes along one direction at a time
+/// left the skin short: in a crease, the push out of one wall along its
+/// normal runs into the other at once (a fuzz input left a body `6.9e-12`
+/// inside a huge triangle whose padding, `9.4e-10`, it was short of, in
+/// the crease it formed with a floor that stopped every push). Up to
+/// [`SKIN_ROUNDS`] times, the body moves by the shortest push that leaves
+/// every triangle within `1 + max_padding` at least `1 + pad` away
+/// ([`shortest_push`], at most `max_padding` long, so no triangle beyond
+/// those limits comes nearer than 1), and the position with the thickest
+/// skin is kept. Without a short skin it costs nothing.
+fn skin_by_shortest_push<T: Real>(
+    frame: &mut Frame<'_, T>,
+    mut p: Vec3<T>,
+    mut nearest: Option<Nearest<T>>,
+    opts: &RobustOptions,
+) -> Vec3<T> {
+    let thickness = |n: &Nearest<T>| n.dist.clone() - n.pad.clone() * T::c(0.5);
+    let Some(mut best) = nearest.as_ref().filter(|n| n.short()).map(|n| (thickness(n), p.clone())) else {
+        return p;
+    };
+    let mut limits = SmallVec::new();
+    for _ in 0..SKIN_ROUNDS {
+        limits_at(frame, &p, &T::zero(), opts, &mut limits);
+        let push = shortest_push(&mut limits, &T::c(opts.max_padding), opts);
+        let pushed = &p + push;
+        if pushed == p {
+            break;
+        }
+        p = pushed;
+        nearest = scan_resting(frame, &p, opts);
+        let Some(near) = nearest.as_ref() else { return p };
+        if thickness(near) > best.0 {
+            best = (thickness(near), p.clone());
+        }
+        if !near.short() {
+            return p;
+        }
+    }
+    if best.1 != p {
+        // The resting contacts must be those of the position kept.
+        scan_resting(frame, &best.1, opts);
+    }
+    best.1
 }
 
 /// The world position of the eSpace position `p` (relative to the frame's
@@ -587,7 +629,14 @@ fn land_checked<T: Real>(
     widest.map_or(world, |(_, w)| w)
 }
 
-/// The triangle nearest a position, from [`scan_resting`].
+/// The triangle whose skin is thinnest at a position, from
+/// [`scan_resting`]: the one whose gap `dist - 1` falls furthest below half
+/// its own padding (the nearest one where the paddings are alike; a huge
+/// triangle far from its vertices has a far wider padding than a small one
+/// in the same plane, and a fuzz input left a body beside two such
+/// coplanar triangles `1.9e-13` clear of the small one, its own padding
+/// kept, and `6.9e-12` inside the huge one, whose padding of `9.4e-10` the
+/// skin check never looked at).
 struct Nearest<T: Real> {
     /// Its distance.
     dist: T,
@@ -595,11 +644,21 @@ struct Nearest<T: Real> {
     point: Vec3<T>,
     /// Its padding.
     pad: T,
+    /// The least distance of any triangle scanned (an overlap when below 1).
+    closest: T,
+}
+
+impl<T: Real> Nearest<T> {
+    /// Whether the gap falls short of half the padding: the skin to
+    /// restore.
+    fn short(&self) -> bool {
+        self.dist.clone() - T::one() < self.pad.clone() * T::c(0.5)
+    }
 }
 
 /// Fills [`Frame::resting`] with the triangles within `1 + 2 pad` of `p`
-/// (by their position in the neighbourhood) and returns the nearest one
-/// within `1 + max_padding`.
+/// (by their position in the neighbourhood) and returns the one with the
+/// thinnest skin within `1 + max_padding` ([`Nearest`]).
 fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOptions) -> Option<Nearest<T>> {
     let one = T::one();
     let reach = one.clone() + T::c(opts.max_padding) + &frame.band;
@@ -624,8 +683,17 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
         if dist <= one.clone() + T::c(2.0) * &pad + &frame.band {
             frame.resting.push(k);
         }
-        if nearest.as_ref().is_none_or(|b| dist < b.dist) {
-            nearest = Some(Nearest { dist, point, pad });
+        let skin = dist.clone() - pad.clone() * T::c(0.5);
+        match nearest.as_mut() {
+            None => nearest = Some(Nearest { closest: dist.clone(), dist, point, pad }),
+            Some(b) => {
+                if dist < b.closest {
+                    b.closest = dist.clone();
+                }
+                if skin < b.dist.clone() - b.pad.clone() * T::c(0.5) {
+                    (b.dist, b.point, b.pad) = (dist, point, pad);
+                }
+            }
         }
     }
     nearest
@@ -650,7 +718,7 @@ pub(crate) fn start<T: Real>(
         return depenetrate(frame, p, opts);
     }
     let nearest = scan_resting(frame, &p, opts);
-    if nearest.as_ref().is_some_and(|n| n.dist < T::one()) {
+    if nearest.as_ref().is_some_and(|n| n.closest < T::one()) {
         let p = depenetrate(frame, p, opts)?;
         return Ok(settle(frame, p, opts));
     }

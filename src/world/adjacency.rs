@@ -166,25 +166,28 @@ impl Adjacency {
                     let (p, q) = (w[e], w[(e + 1) % 3]);
                     let same_way = (0..3).any(|k| wn[k] == p && wn[(k + 1) % 3] == q);
                     let m = if same_way { -normal(nb as usize) } else { normal(nb as usize) };
-                    // Concave: the neighbour rises above this triangle's
-                    // plane by more than `64 eps` of its own extent from
-                    // the edge, beyond the rounding of the rise (a few
-                    // `eps` of the extent). Relative, so every scale the
-                    // mesh accepts decides alike: the threshold was `1e-9`
-                    // times one vertex's distance but at least `1e-9`,
-                    // which depended on the vertex order and, below sides
-                    // of `1e-9`, called no fold concave (a review). Only a
-                    // fold beyond the internal-edge angle depends on it: a
-                    // sheet folded back onto itself is concave from the
-                    // side its far vertex rises towards, down to about
-                    // `1e-13` radians from closed (F20's was `5e-14` of
-                    // its `6.7e5` extent: `5.8e-14`).
+                    // Concave: the neighbour's far corner (the one off the
+                    // shared edge) rises above this triangle's plane by
+                    // more than `64 eps` of its distance from the edge's
+                    // start. Relative, so every scale the mesh accepts
+                    // decides alike: the threshold was `1e-9` times one
+                    // vertex's distance but at least `1e-9`, which
+                    // depended on the vertex order and, below sides of
+                    // `1e-9`, called no fold concave (a review). The
+                    // shared edge's own ends are left out: their height is
+                    // rounding only, but that of a sliver's normal tilted
+                    // by `eps / sin` of its angle, which called sharp
+                    // convex edges beside slivers concave (a review of the
+                    // first version). Only a fold beyond the
+                    // internal-edge angle depends on this: a sheet folded
+                    // back onto itself is concave from the side its far
+                    // corner rises towards, down to about `1e-13` radians
+                    // from closed (F20's was `5.8e-14` of its extent).
                     let a = vertices[triangles[t][e] as usize];
-                    let (rise, extent) = triangles[nb as usize].iter().fold((0.0, 0.0), |(rise, extent), &v| {
-                        let d = vertices[v as usize] - a;
-                        (n.dot(&d).max(rise), d.amax().max(extent))
-                    });
-                    let concave = rise > 64.0 * f64::EPSILON * extent;
+                    let far = (0..3)
+                        .find(|&k| wn[k] != p && wn[k] != q)
+                        .map(|k| vertices[triangles[nb as usize][k] as usize] - a);
+                    let concave = far.is_some_and(|d| n.dot(&d) > 64.0 * f64::EPSILON * d.amax());
                     if !(n.dot(&m) >= cos_min || concave) {
                         bits |= 1 << e;
                     }

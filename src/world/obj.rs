@@ -154,10 +154,14 @@ fn folded_fan(vertices: &[[f64; 3]], corners: &[u32]) -> Option<usize> {
     }
     let at = |i: u32| nalgebra::Vector3::from(vertices[i as usize]);
     let origin = at(corners[0]);
+    // Scaled exactly by a power of two, so that the products (fourth powers
+    // of the polygon's size) neither overflow nor underflow: unscaled, a
+    // review found the test blind beyond 1e77 and below 1e-81.
+    let scale = crate::geom::unit_scale(corners[1..].iter().map(|&i| (at(i) - origin).amax()).fold(0.0, f64::max));
     let fan: Vec<_> = corners[1..]
         .windows(2)
         .map(|w| {
-            let (e1, e2) = (at(w[0]) - origin, at(w[1]) - origin);
+            let (e1, e2) = ((at(w[0]) - origin) * scale, (at(w[1]) - origin) * scale);
             (e1.cross(&e2), 16.0 * f64::EPSILON * e1.norm() * e2.norm())
         })
         .collect();
