@@ -599,6 +599,9 @@ struct Nearest<T: Real> {
     point: Vec3<T>,
     /// Its padding.
     pad: T,
+    /// Its skin, `dist - pad / 2` (what the choice of this triangle
+    /// minimises).
+    skin: T,
     /// The least distance of any triangle scanned (an overlap when below 1).
     closest: T,
 }
@@ -619,9 +622,8 @@ impl<T: Real> Nearest<T> {
     /// would count as progress.)
     fn beats(&self, other: &Self) -> bool {
         let one = T::one();
-        let skin = |n: &Self| n.dist.clone() - n.pad.clone() * T::c(0.5);
         match (self.closest >= one, other.closest >= one) {
-            (true, true) => skin(self) > skin(other),
+            (true, true) => self.skin > other.skin,
             (clear, other_clear) if clear != other_clear => clear,
             _ => self.closest > other.closest,
         }
@@ -657,13 +659,13 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
         }
         let skin = dist.clone() - pad.clone() * T::c(0.5);
         match nearest.as_mut() {
-            None => nearest = Some(Nearest { closest: dist.clone(), dist, point, pad }),
+            None => nearest = Some(Nearest { closest: dist.clone(), dist, point, pad, skin }),
             Some(b) => {
                 if dist < b.closest {
                     b.closest = dist.clone();
                 }
-                if skin < b.dist.clone() - b.pad.clone() * T::c(0.5) {
-                    (b.dist, b.point, b.pad) = (dist, point, pad);
+                if skin < b.skin {
+                    (b.dist, b.point, b.pad, b.skin) = (dist, point, pad, skin);
                 }
             }
         }
