@@ -174,7 +174,8 @@ impl RobustOptions {
 /// the plain padding.
 ///
 /// `least_s` is `max(1, |p|)` ([`least_s`]), computed once by callers that
-/// pad many triangles at one position.
+/// pad many triangles at one position. The padding is at most
+/// `max_padding`; [`uncapped_padding`] is the same without that cap.
 fn padding<T: Real>(
     start_magnitude: f64,
     least_s: f64,
@@ -183,6 +184,20 @@ fn padding<T: Real>(
     c: &Candidate<T>,
     opts: &RobustOptions,
 ) -> T {
+    T::c(uncapped_padding(start_magnitude, least_s, p, w, c, opts).min(opts.max_padding))
+}
+
+/// [`padding`] before its cap `max_padding`: a bound, with the margin of
+/// `padding_ulps` over the detection's touching tolerance, on the error of
+/// the contact's distance, and so also of its closest point.
+fn uncapped_padding<T: Real>(
+    start_magnitude: f64,
+    least_s: f64,
+    p: &Vec3<T>,
+    w: &Vec3<T>,
+    c: &Candidate<T>,
+    opts: &RobustOptions,
+) -> f64 {
     let u = T::unit_roundoff();
     let tri = &c.triangle;
     let magnitude = |v: &Vec3<T>| max_abs(v, T::zero()).to_f64();
@@ -190,7 +205,7 @@ fn padding<T: Real>(
     let s = magnitude(w).max(nearest).max(least_s);
     // The tilt never exceeds the shape factor: most triangles need no more.
     let tilt = if c.shape.to_f64() <= opts.free_tilt { 1.0 } else { opts.tilt_factor(c.tilt()) };
-    T::c((opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude).min(opts.max_padding))
+    opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude
 }
 
 /// The least `s` of [`padding`] at `p`: `max(1, |p|)`.
@@ -487,7 +502,51 @@ fn restore_skin<T: Real>(
         p = pushed;
         nearest = scan_resting(frame, &p, opts);
     }
-    p
+    skin_in_crease(frame, p, nearest, opts)
+}
+
+/// The end of [`restore_skin`] where pushes along one normal at a time
+/// left the skin short: in a crease the push out of one wall along its
+/// normal runs into the other at once (fuzz finding F34 left a body
+/// `6.9e-12` inside a huge triangle whose padding, `9.4e-10`, it was short
+/// of, in an acute crease with a floor that stopped every push). Up to
+/// [`SKIN_ROUNDS`] times the body moves by [`crease_push`]: every triangle
+/// short of half its padding is pushed to its full padding, and no other
+/// comes nearer than its own (or nearer at all, if it already is); where
+/// no push does both (a slot narrower than the paddings: its walls ask
+/// for opposite pushes) the body stays. Of the positions measured, the
+/// best ([`Nearest::beats`]) is kept. Without a short skin it costs
+/// nothing.
+fn skin_in_crease<T: Real>(
+    frame: &mut Frame<'_, T>,
+    mut p: Vec3<T>,
+    nearest: Option<Nearest<T>>,
+    opts: &RobustOptions,
+) -> Vec3<T> {
+    let Some(mut best) = nearest.filter(Nearest::short).map(|n| (n, p.clone())) else { return p };
+    let mut limits = SmallVec::new();
+    for _ in 0..SKIN_ROUNDS {
+        limits_at(frame, &p, &T::zero(), Limits::Skin, opts, &mut limits);
+        let Some(push) = crease_push(&mut limits, opts) else { break };
+        let pushed = &p + push;
+        if pushed == p {
+            break;
+        }
+        p = pushed;
+        let Some(near) = scan_resting(frame, &p, opts) else { return p };
+        let short = near.short();
+        if near.beats(&best.0) {
+            best = (near, p.clone());
+        }
+        if !short {
+            break;
+        }
+    }
+    if best.1 != p {
+        // The resting contacts must be those of the position kept.
+        scan_resting(frame, &best.1, opts);
+    }
+    best.1
 }
 
 /// The world position of the eSpace position `p` (relative to the frame's
@@ -574,7 +633,7 @@ fn land_checked<T: Real>(
         if best.as_ref().is_none_or(|(b, _)| near.beats(b)) {
             best = Some((near, world.clone()));
         }
-        limits_at(frame, &q, &extra, opts, &mut limits);
+        limits_at(frame, &q, &extra, Limits::Clear, opts, &mut limits);
         if round == SKIN_ROUNDS || limits.is_empty() {
             break;
         }
@@ -719,7 +778,7 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
         if !overlaps(frame, &p) {
             break;
         }
-        limits_at(frame, &p, &T::zero(), opts, &mut limits);
+        limits_at(frame, &p, &T::zero(), Limits::Clear, opts, &mut limits);
         let push = shortest_push(&mut limits, &T::c(MAX_PUSH + opts.max_padding), opts);
         let length = norm(&push).to_f64();
         frame.trace.depenetration += length;
@@ -755,17 +814,42 @@ fn beyond<T: Real>(c: &Candidate<T>, p: &Vec3<T>, reach: &T, reach_sq: &T) -> bo
 /// along the unit direction `n`.
 type Limit<T> = (T, Vec3<T>);
 
-/// Replaces `limits` with those of every triangle within `1 + max_padding
-/// + extra` of `p`: the unit direction that separates `p` from the
-/// triangle's closest point (the face's front normal if `p` lies on the
-/// face, or when triangles are one-sided and `p` is behind the plane of
-/// one it overlaps, which pushes it through to the front; one-sided
-/// triangles it is behind and does not overlap set no limit) and the
-/// distance to gain along it to lie `1 + pad + extra` away.
+/// What the limits of [`limits_at`] ask for.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Limits {
+    /// Every triangle within reach must end `1 + pad + extra` away.
+    Clear,
+    /// The limits of [`skin_in_crease`], for a push at most `max_padding /
+    /// 2` long: a triangle short of its skin (nearer than `1 + pad / 2`)
+    /// must end `1 + pad` away; any other must not come nearer than
+    /// `1 + pad`, nor nearer at all if it already is (its need is at most
+    /// 0). A triangle whose padding is capped sets a limit no such push
+    /// meets, `max_padding` along its direction: its distance and
+    /// direction are off by more than the padding, and so may be the
+    /// gain a push seems to make (in `f32` a wall with vertices `8.8e5`
+    /// radii away, measured beyond reach, was `6.5e-4` inside after a push
+    /// towards it); and it counts wherever that error, its
+    /// [`uncapped_padding`], could put it within reach. An uncapped
+    /// triangle's closest point is off by well under its padding, so its
+    /// direction by under `pad` radians, and a push of at most `max_padding
+    /// / 2` gains at most `pad max_padding / 2` less than it seems to: a
+    /// hundredth of the half padding the limits keep in hand.
+    Skin,
+}
+
+/// Replaces `limits` with those of every triangle within
+/// `1 + max_padding + extra` of `p` (wider for [`Limits::Skin`]): the unit
+/// direction that separates `p` from the triangle's closest point (the
+/// face's front normal if `p` lies on the face, or when triangles are
+/// one-sided and `p` is behind the plane of one it overlaps, which pushes
+/// it through to the front; one-sided triangles it is behind and does not
+/// overlap set no limit) and the distance to gain along it: to lie
+/// `1 + pad + extra` away, or as `kind` says.
 fn limits_at<T: Real>(
     frame: &Frame<'_, T>,
     p: &Vec3<T>,
     extra: &T,
+    kind: Limits,
     opts: &RobustOptions,
     limits: &mut SmallVec<[Limit<T>; 8]>,
 ) {
@@ -776,6 +860,13 @@ fn limits_at<T: Real>(
     limits.clear();
     for c in &frame.hood.triangles {
         let tri = &c.triangle;
+        let raw_pad = uncapped_padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts);
+        // A skin limit is set wherever the distance's error could put the
+        // triangle within reach.
+        let reach = match kind {
+            Limits::Clear => reach.clone(),
+            Limits::Skin => reach.clone() + T::c(raw_pad),
+        };
         if beyond(c, p, &reach, &(reach.clone() * &reach)) {
             continue;
         }
@@ -786,8 +877,10 @@ fn limits_at<T: Real>(
         }
         let front = normalize(&tri.unnormalized_normal());
         let side = front.as_ref().map(|f| dot(f, &(p - &tri.a)));
-        let want = one.clone() + padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts) + extra;
-        limits.push(match (front, side) {
+        let pad = T::c(raw_pad.min(opts.max_padding));
+        let short = dist.clone() - &one < pad.clone() * T::c(0.5);
+        let want = one.clone() + pad + extra;
+        let limit = match (front, side) {
             (Some(f), Some(side)) if side < T::zero() && !frame.detect.two_sided => {
                 if !(dist < one) {
                     continue;
@@ -797,6 +890,15 @@ fn limits_at<T: Real>(
             _ if dist > tiny => (want - &dist, (p - &q) / dist.clone()),
             (Some(f), _) => (want, f),
             (None, _) => continue,
+        };
+        limits.push(match kind {
+            Limits::Clear => limit,
+            // Capped, the padding no longer covers the distance's error:
+            // no push can be shown to keep the triangle out, and its
+            // limit, `max_padding` along its direction, rules them all out.
+            Limits::Skin if raw_pad >= opts.max_padding => (T::c(opts.max_padding), limit.1),
+            Limits::Skin if short => limit,
+            Limits::Skin => (limit.0.min(T::zero()), limit.1),
         });
     }
 }
@@ -823,6 +925,34 @@ fn shortest_push<T: Real>(limits: &mut SmallVec<[Limit<T>; 8]>, longest: &T, opt
     let push = least_push(limits, opts).unwrap_or_else(|| n * need.clone());
     let length = norm(&push);
     if length > *longest { push * (longest.clone() / length) } else { push }
+}
+
+/// The push for the limits of [`skin_in_crease`] ([`Limits::Skin`]): the
+/// shortest that satisfies the deepest [`DEPENETRATION_LIMITS`]
+/// ([`least_push`]), if it satisfies every other limit too (within the
+/// same tolerance) and is at most `max_padding / 2` long; `None` if not.
+/// Unlike [`shortest_push`] it never falls back to the deepest limit
+/// alone, nor shortens a push: the limits hold for the push that meets
+/// them, not for a part of it (a capped triangle's limit would then move
+/// the body along its untrusted direction: shortened pushes took bodies up
+/// to `9.9e-3` into walls in 19 of 300 narrow `f32` slots), and in a slot narrower
+/// than its walls' paddings (their limits ask for opposite pushes) the
+/// deepest limit alone would drive the body towards the other wall.
+///
+/// Why such a push keeps the limits: the distance to a triangle is convex,
+/// so a push `d` gains at least `n . d` on a triangle whose exact
+/// separating direction is `n` (the computed one is off by under `pad`
+/// radians: [`Limits::Skin`]); a triangle beyond the limits' reach
+/// `1 + max_padding` stays `1 + max_padding / 2` away, outside its skin.
+fn crease_push<T: Real>(limits: &mut SmallVec<[Limit<T>; 8]>, opts: &RobustOptions) -> Option<Vec3<T>> {
+    limits.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
+    let solved = limits.len().min(DEPENETRATION_LIMITS);
+    let push = least_push(&limits[..solved], opts)?;
+    let tol = T::c(opts.feasible_ulps * T::unit_roundoff()) * (norm(&push) + limits[0].0.abs());
+    if !limits[solved..].iter().all(|(need, n)| dot(n, &push) >= need.clone() - &tol) {
+        return None;
+    }
+    (norm(&push) <= T::c(0.5 * opts.max_padding)).then_some(push)
 }
 
 /// The most limits one round solves for (the deepest ones; the next round

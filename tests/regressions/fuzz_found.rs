@@ -919,15 +919,13 @@ fn ellipsoid_sliding_into_a_slot_one_ulp_wide_ends_within_its_rounding_without_t
 /// within its own padding; the second's padding is `9.4e-10` (its
 /// distance, computed from vertices that far, is off by `1.6e-11`: it
 /// came out `9e-12` clear), and a push out of it
-/// along its normal runs into the floor at once. OPEN: the skin is now
-/// judged on the triangle that falls furthest short of its own padding,
-/// but restoring it needs a push out of both walls at once; a shortest
-/// push over every triangle within reach fixed this case and, a review
-/// found, drove bodies up to `3.3e-3` into the other wall of narrow slots
-/// in `f32` far from the origin, so it was withdrawn (docs/fuzzing.md,
-/// F34). Ignored until a fix holds on both.
+/// along its normal runs into the floor at once. The skin is now judged on
+/// the triangle that falls furthest short of its own padding, and where
+/// pushes along one normal at a time leave it short, a push out of both
+/// walls at once restores it (`skin_in_crease`; its limits keep narrow
+/// slots beside huge walls in `f32` as they were:
+/// `respond_huge_wall_slots`). Ends `9.3e-10` clear of the huge triangle.
 #[test]
-#[ignore = "F34 is open: see docs/fuzzing.md"]
 fn sliding_along_the_crease_of_a_huge_plane_keeps_its_padding() {
     let soup = [
         [

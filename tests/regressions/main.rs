@@ -11,4 +11,5 @@ mod respond_back_face;
 mod respond_ellipsoid_reach;
 mod respond_embedded;
 mod respond_far_origin;
+mod respond_huge_wall_slots;
 mod respond_parallel_planes;
