@@ -190,6 +190,7 @@ fn padding<T: Real>(
 /// [`padding`] before its cap `max_padding`: a bound, with the margin of
 /// `padding_ulps` over the detection's touching tolerance, on the error of
 /// the contact's distance, and so also of its closest point.
+#[inline(always)]
 fn uncapped_padding<T: Real>(
     start_magnitude: f64,
     least_s: f64,
@@ -517,6 +518,7 @@ fn restore_skin<T: Real>(
 /// for opposite pushes) the body stays. Of the positions measured, the
 /// best ([`Nearest::beats`]) is kept. Without a short skin it costs
 /// nothing.
+#[cold]
 fn skin_in_crease<T: Real>(
     frame: &mut Frame<'_, T>,
     mut p: Vec3<T>,
