@@ -448,6 +448,44 @@ fn obj_error_line_numbers_count_blank_and_comment_lines() {
     obj_error(text, 9, "out of range");
 }
 
+/// Lone `\r` line ends (classic Mac OS) count as line ends: the file
+/// reads like its `\n` twin, and errors name the same line. (They were
+/// one line, whose first `v` statement then had every coordinate of the
+/// file.)
+#[test]
+fn obj_lone_carriage_returns_end_lines() {
+    let unix = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n";
+    let mac = unix.replace('\n', "\r");
+    let mixed = "v 0 0 0\r\nv 1 0 0\rv 0 1 0\nv 0 0 1\r\rf 1 2 3\nf 1 2 4";
+    let read = |text: &str| TriangleMesh::from_obj_str(text, Path::new("x.obj")).unwrap();
+    let expected = read(unix);
+    assert_eq!(expected.len(), 2);
+    for text in [mac.as_str(), mixed] {
+        let mesh = read(text);
+        assert_eq!(mesh.len(), 2, "{text:?}");
+        assert_eq!(mesh.vertices(), expected.vertices(), "{text:?}");
+    }
+    obj_error("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 5\r", 4, "out of range");
+    // The blank line between `\r\r` counts; `\r\n` is one line end.
+    obj_error("v 0 0 0\r\nv 1 0 0\r\rv 0 1 0\nf 1 2 5", 5, "out of range");
+    obj_error("v 0 0 0\rv 1 0 0\r", 2, "no face");
+}
+
+/// A backslash at the end of a line's content continues the statement on
+/// the next line (the OBJ specification's line continuation); its errors
+/// name the statement's first line. A backslash inside a comment does not
+/// continue anything, and one on the last line ends the statement there.
+#[test]
+fn obj_backslash_continues_a_statement() {
+    let text = "v 0 0 \\\n 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 \\  \r\n2 \\\n3 4 # a quad over three lines\n";
+    let mesh = TriangleMesh::from_obj_str(text, Path::new("x.obj")).unwrap();
+    assert_eq!(mesh.len(), 2);
+    assert_eq!(mesh.vertices()[0], nalgebra::Vector3::new(0.0, 0.0, 0.0));
+    obj_error("v 0 0 0\nv 1 \\\n0 x\nv 0 1 0\nf 1 2 3\n", 2, "`x` is not a number");
+    obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\n# comment \\\nf 1 2 4\n", 5, "out of range");
+    obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\", 4, "at least 3 vertices");
+}
+
 #[test]
 fn obj_missing_file_is_io_error() {
     let path = Path::new("/nonexistent-sweepslide-dir/missing.obj");

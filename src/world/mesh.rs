@@ -86,7 +86,7 @@ impl TriangleMesh {
             let bytes = e.as_bytes();
             Error::Obj {
                 path: path.to_path_buf(),
-                line: 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count(),
+                line: super::obj::line_at_end(&bytes[..at]),
                 message: format!("not UTF-8 text (byte {:#04x} at offset {at})", bytes[at]),
             }
         })?;
@@ -103,7 +103,7 @@ impl TriangleMesh {
         if obj.triangles.is_empty() {
             return Err(Error::Obj {
                 path: path.to_path_buf(),
-                line: text.lines().count().max(1),
+                line: obj.last_line,
                 message: "end of file: no face (`f` statement), nothing to collide with".into(),
             });
         }

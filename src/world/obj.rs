@@ -18,8 +18,14 @@
 //! with, and `curv`, `curv2` and `surf` free-form geometry this reader
 //! does not evaluate: both are rejected with their line number rather
 //! than dropped.
+//!
+//! Lines end with `\n`, `\r\n` or a lone `\r` (as classic Mac OS tools
+//! wrote), and a line whose content (before any `#` comment) ends with a
+//! backslash continues on the next, as the OBJ specification allows; an
+//! error in a continued statement names its first line.
 
 use crate::Error;
+use std::borrow::Cow;
 use std::path::Path;
 
 /// The positions and triangles of an OBJ text.
@@ -34,6 +40,9 @@ pub struct ObjData {
     /// The statements read and not used, by keyword, in order of first
     /// appearance.
     pub ignored: Vec<Ignored>,
+    /// The 1-based number of the text's last line (1 for an empty text;
+    /// a line end at the end of the text starts no new line).
+    pub last_line: usize,
 }
 
 /// Statements of one keyword that an OBJ file gave and the reader did not
@@ -57,32 +66,98 @@ pub struct Ignored {
 /// vertices or whose fan folds over itself, an index of zero or out of
 /// range, a line/point element or free-form geometry.
 pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
-    let mut data = ObjData::default();
-    // `vt` and `vn` statements read so far, for the faces' other indices.
-    let (mut textures, mut normals) = (0, 0);
+    let mut reader = Reader::default();
     let err = |line: usize, message: String| Error::Obj { path: path.to_path_buf(), line, message };
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    for (n, raw) in text.lines().enumerate() {
-        let line = n + 1;
+    // A statement continued from earlier lines: its first line and text.
+    let mut continued: Option<(usize, String)> = None;
+    for (n, raw) in physical_lines(text).enumerate() {
+        reader.data.last_line = n + 1;
         let content = raw.split('#').next().unwrap_or("");
+        let (content, continues) = match content.trim_end().strip_suffix('\\') {
+            Some(head) => (head, true),
+            None => (content, false),
+        };
+        let (line, statement) = match continued.take() {
+            Some((first, mut joined)) => {
+                joined.push(' ');
+                joined.push_str(content);
+                (first, Cow::Owned(joined))
+            }
+            None => (n + 1, Cow::Borrowed(content)),
+        };
+        if continues {
+            continued = Some((line, statement.into_owned()));
+        } else {
+            reader.statement(line, &statement).map_err(|m| err(line, m))?;
+        }
+    }
+    // A backslash on the last line continues onto nothing.
+    if let Some((line, statement)) = continued {
+        reader.statement(line, &statement).map_err(|m| err(line, m))?;
+    }
+    if text.ends_with(['\n', '\r']) {
+        reader.data.last_line -= 1;
+    }
+    reader.data.last_line = reader.data.last_line.max(1);
+    Ok(reader.data)
+}
+
+/// The lines of `text`, each ended by `\n`, `\r\n` or a lone `\r` (the
+/// last one by the end of the text).
+fn physical_lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut rest = Some(text);
+    std::iter::from_fn(move || {
+        let text = rest?;
+        let Some(end) = text.find(['\n', '\r']) else {
+            rest = None;
+            return Some(text);
+        };
+        let next = if text[end..].starts_with("\r\n") { end + 2 } else { end + 1 };
+        rest = Some(&text[next..]);
+        Some(&text[..end])
+    })
+}
+
+/// The 1-based line, as [`parse_obj`] counts them, on which the byte at
+/// `bytes.len()` stands, for text that is not UTF-8 from there on.
+#[must_use]
+pub(crate) fn line_at_end(bytes: &[u8]) -> usize {
+    let ends =
+        bytes.iter().enumerate().filter(|&(k, &b)| b == b'\n' || (b == b'\r' && bytes.get(k + 1) != Some(&b'\n')));
+    1 + ends.count()
+}
+
+/// The state of [`parse_obj`]: what was read so far.
+#[derive(Default)]
+struct Reader {
+    data: ObjData,
+    /// `vt` statements read so far, for the faces' texture indices.
+    textures: usize,
+    /// `vn` statements read so far, for the faces' normal indices.
+    normals: usize,
+}
+
+impl Reader {
+    /// Reads one statement (without its comment) that starts on `line`;
+    /// the error message if it is malformed.
+    fn statement(&mut self, line: usize, content: &str) -> Result<(), String> {
+        let data = &mut self.data;
         let mut words = content.split_whitespace();
         let Some(keyword) = words.next() else {
-            continue;
+            return Ok(());
         };
         match keyword {
             "v" => {
                 let coords: Vec<&str> = words.collect();
                 if !(3..=4).contains(&coords.len()) {
-                    return Err(err(
-                        line,
-                        format!("vertex needs 3 coordinates (optionally a weight), found {}", coords.len()),
-                    ));
+                    return Err(format!("vertex needs 3 coordinates (optionally a weight), found {}", coords.len()));
                 }
                 let mut v = [0.0; 4];
                 for (slot, word) in v.iter_mut().zip(&coords) {
-                    *slot = word.parse::<f64>().map_err(|_| err(line, format!("`{word}` is not a number")))?;
+                    *slot = word.parse::<f64>().map_err(|_| format!("`{word}` is not a number"))?;
                     if !slot.is_finite() {
-                        return Err(err(line, format!("vertex coordinate `{word}` is not finite")));
+                        return Err(format!("vertex coordinate `{word}` is not finite"));
                     }
                 }
                 data.vertices.push([v[0], v[1], v[2]]);
@@ -90,21 +165,17 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
             "f" => {
                 let mut corners = Vec::with_capacity(4);
                 for word in words {
-                    let corner = resolve_corner(word, [data.vertices.len(), textures, normals]);
-                    corners.push(corner.map_err(|m| err(line, m))?);
+                    corners.push(resolve_corner(word, [data.vertices.len(), self.textures, self.normals])?);
                 }
                 if corners.len() < 3 {
-                    return Err(err(line, format!("face needs at least 3 vertices, found {}", corners.len())));
+                    return Err(format!("face needs at least 3 vertices, found {}", corners.len()));
                 }
                 if let Some(k) = folded_fan(&data.vertices, &corners) {
-                    return Err(err(
-                        line,
-                        format!(
-                            "this {}-sided polygon is concave as seen from its first vertex: its fan's triangle {k} \
-                             faces against the polygon and would cover area outside it; split the polygon into \
-                             triangles or convex polygons",
-                            corners.len()
-                        ),
+                    return Err(format!(
+                        "this {}-sided polygon is concave as seen from its first vertex: its fan's triangle {k} \
+                         faces against the polygon and would cover area outside it; split the polygon into \
+                         triangles or convex polygons",
+                        corners.len()
                     ));
                 }
                 for k in 1..corners.len() - 1 {
@@ -113,27 +184,26 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
                 }
             }
             "l" | "p" => {
-                return Err(err(line, format!("`{keyword}` elements (lines, points) are not collision geometry")));
+                return Err(format!("`{keyword}` elements (lines, points) are not collision geometry"));
             }
             "curv" | "curv2" | "surf" => {
-                return Err(err(
-                    line,
-                    format!("`{keyword}`: free-form curves and surfaces are not supported; export them as polygons"),
+                return Err(format!(
+                    "`{keyword}`: free-form curves and surfaces are not supported; export them as polygons"
                 ));
             }
             "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "cstype" | "deg" | "parm" | "end" | "lod"
             | "bevel" | "c_interp" | "d_interp" | "shadow_obj" | "trace_obj" | "maplib" | "usemap" | "mg" => {
-                textures += usize::from(keyword == "vt");
-                normals += usize::from(keyword == "vn");
+                self.textures += usize::from(keyword == "vt");
+                self.normals += usize::from(keyword == "vn");
                 match data.ignored.iter_mut().find(|i| i.keyword == keyword) {
                     Some(i) => i.count += 1,
                     None => data.ignored.push(Ignored { keyword: keyword.to_string(), count: 1, first_line: line }),
                 }
             }
-            other => return Err(err(line, format!("unknown statement `{other}`"))),
+            other => return Err(format!("unknown statement `{other}`")),
         }
+        Ok(())
     }
-    Ok(data)
 }
 
 /// For a polygon of more than three corners, the first triangle `k`
