@@ -528,7 +528,9 @@ fn skin_in_crease<T: Real>(
     let Some(mut best) = nearest.filter(Nearest::short).map(|n| (n, p.clone())) else { return p };
     let mut limits = SmallVec::new();
     for _ in 0..SKIN_ROUNDS {
-        limits_at(frame, &p, &T::zero(), Limits::Skin, opts, &mut limits);
+        if !limits_at(frame, &p, &T::zero(), Limits::Skin, opts, &mut limits) {
+            break;
+        }
         let Some(push) = crease_push(&mut limits, opts) else { break };
         let pushed = &p + push;
         if pushed == p {
@@ -635,7 +637,8 @@ fn land_checked<T: Real>(
         if best.as_ref().is_none_or(|(b, _)| near.beats(b)) {
             best = Some((near, world.clone()));
         }
-        limits_at(frame, &q, &extra, Limits::Clear, opts, &mut limits);
+        // Clear limits are always complete.
+        let _ = limits_at(frame, &q, &extra, Limits::Clear, opts, &mut limits);
         if round == SKIN_ROUNDS || limits.is_empty() {
             break;
         }
@@ -780,7 +783,8 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
         if !overlaps(frame, &p) {
             break;
         }
-        limits_at(frame, &p, &T::zero(), Limits::Clear, opts, &mut limits);
+        // Clear limits are always complete.
+        let _ = limits_at(frame, &p, &T::zero(), Limits::Clear, opts, &mut limits);
         let push = shortest_push(&mut limits, &T::c(MAX_PUSH + opts.max_padding), opts);
         let length = norm(&push).to_f64();
         frame.trace.depenetration += length;
@@ -825,17 +829,17 @@ enum Limits {
     /// 2` long: a triangle short of its skin (nearer than `1 + pad / 2`)
     /// must end `1 + pad` away; any other must not come nearer than
     /// `1 + pad`, nor nearer at all if it already is (its need is at most
-    /// 0). A triangle whose padding is capped sets a limit no such push
-    /// meets, `max_padding` along its direction: its distance and
-    /// direction are off by more than the padding, and so may be the
-    /// gain a push seems to make (in `f32` a wall with vertices `8.8e5`
-    /// radii away, measured beyond reach, was `6.5e-4` inside after a push
-    /// towards it); and it counts wherever that error, its
-    /// [`uncapped_padding`], could put it within reach. An uncapped
-    /// triangle's closest point is off by well under its padding, so its
-    /// direction by under `pad` radians, and a push of at most `max_padding
-    /// / 2` gains at most `pad max_padding / 2` less than it seems to: a
-    /// hundredth of the half padding the limits keep in hand.
+    /// 0). They are not to be trusted where a triangle whose padding is
+    /// capped could be within reach: its distance and direction are off by
+    /// more than the padding, and so may be the gain a push seems to make
+    /// (in `f32` a wall with vertices `8.8e5` radii away, measured beyond
+    /// reach, was `6.5e-4` inside after a push towards it); a triangle
+    /// counts wherever that error, its [`uncapped_padding`], could put it
+    /// within reach, and on either side of a one-sided triangle. An
+    /// uncapped triangle's closest point is off by well under its padding,
+    /// so its direction by under `pad` radians, and a push of at most
+    /// `max_padding / 2` gains at most `pad max_padding / 2` less than it
+    /// seems to: a hundredth of the half padding the limits keep in hand.
     Skin,
 }
 
@@ -846,7 +850,10 @@ enum Limits {
 /// one-sided and `p` is behind the plane of one it overlaps, which pushes
 /// it through to the front; one-sided triangles it is behind and does not
 /// overlap set no limit) and the distance to gain along it: to lie
-/// `1 + pad + extra` away, or as `kind` says.
+/// `1 + pad + extra` away, or as `kind` says. Returns whether the limits
+/// can be trusted: always for [`Limits::Clear`]; for [`Limits::Skin`] not
+/// where a triangle whose padding is capped could be within reach (the
+/// limits are then left incomplete).
 fn limits_at<T: Real>(
     frame: &Frame<'_, T>,
     p: &Vec3<T>,
@@ -854,21 +861,19 @@ fn limits_at<T: Real>(
     kind: Limits,
     opts: &RobustOptions,
     limits: &mut SmallVec<[Limit<T>; 8]>,
-) {
+) -> bool {
     let one = T::one();
     let reach = one.clone() + T::c(opts.max_padding) + extra;
     let tiny = T::c(opts.feasible_ulps * T::unit_roundoff());
     let s = least_s(p);
+    let raw_padding = |c: &Candidate<T>| uncapped_padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts);
     limits.clear();
     for c in &frame.hood.triangles {
         let tri = &c.triangle;
-        let raw_pad = uncapped_padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts);
         // A skin limit is set wherever the distance's error could put the
         // triangle within reach.
-        let reach = match kind {
-            Limits::Clear => reach.clone(),
-            Limits::Skin => reach.clone() + T::c(raw_pad),
-        };
+        let widened = (kind == Limits::Skin).then(|| raw_padding(c));
+        let reach = widened.map_or_else(|| reach.clone(), |w| reach.clone() + T::c(w));
         if beyond(c, p, &reach, &(reach.clone() * &reach)) {
             continue;
         }
@@ -877,12 +882,16 @@ fn limits_at<T: Real>(
         if !(dist < reach) {
             continue;
         }
+        let raw_pad = widened.unwrap_or_else(|| raw_padding(c));
+        if kind == Limits::Skin && raw_pad >= opts.max_padding {
+            return false;
+        }
         let front = normalize(&tri.unnormalized_normal());
         let side = front.as_ref().map(|f| dot(f, &(p - &tri.a)));
         let pad = T::c(raw_pad.min(opts.max_padding));
         let short = dist.clone() - &one < pad.clone() * T::c(0.5);
         let want = one.clone() + pad + extra;
-        let limit = match (front, side) {
+        let (need, n) = match (front, side) {
             (Some(f), Some(side)) if side < T::zero() && !frame.detect.two_sided => {
                 if !(dist < one) {
                     continue;
@@ -893,16 +902,10 @@ fn limits_at<T: Real>(
             (Some(f), _) => (want, f),
             (None, _) => continue,
         };
-        limits.push(match kind {
-            Limits::Clear => limit,
-            // Capped, the padding no longer covers the distance's error:
-            // no push can be shown to keep the triangle out, and its
-            // limit, `max_padding` along its direction, rules them all out.
-            Limits::Skin if raw_pad >= opts.max_padding => (T::c(opts.max_padding), limit.1),
-            Limits::Skin if short => limit,
-            Limits::Skin => (limit.0.min(T::zero()), limit.1),
-        });
+        let relaxed = kind == Limits::Skin && !short;
+        limits.push((if relaxed { need.min(T::zero()) } else { need }, n));
     }
+    true
 }
 
 /// The longest push one round may make, in radii: the most the body's
@@ -931,15 +934,22 @@ fn shortest_push<T: Real>(limits: &mut SmallVec<[Limit<T>; 8]>, longest: &T, opt
 
 /// The push for the limits of [`skin_in_crease`] ([`Limits::Skin`]): the
 /// shortest that satisfies the deepest [`DEPENETRATION_LIMITS`]
-/// ([`least_push`]), if it satisfies every other limit too (within the
-/// same tolerance) and is at most `max_padding / 2` long; `None` if not.
-/// Unlike [`shortest_push`] it never falls back to the deepest limit
-/// alone, nor shortens a push: the limits hold for the push that meets
-/// them, not for a part of it (a capped triangle's limit would then move
-/// the body along its untrusted direction: shortened pushes took bodies up
-/// to `9.9e-3` into walls in 19 of 300 narrow `f32` slots), and in a slot narrower
-/// than its walls' paddings (their limits ask for opposite pushes) the
-/// deepest limit alone would drive the body towards the other wall.
+/// ([`least_push`]), if it meets every limit within `feasible_ulps * u`
+/// of the largest need or of its own length, and is at most `max_padding
+/// / 2` long; `None` if not.
+///
+/// The check is tighter than [`least_push`]'s, whose tolerance grows with
+/// the coefficients of a nearly singular pair or triple: two limits from
+/// coplanar triangles of one wall, `5e-6` radians apart in `f32`, passed
+/// its parallel test on the rounding of `1 - c^2` and gave a push of
+/// rounding noise, `4.8e-3` long, that a tolerance of `7.5e-3` let move
+/// the body `1.4e-3` towards a triangle it was to leave (a review). Unlike
+/// [`shortest_push`] it never falls back to the deepest limit alone, nor
+/// shortens a push: the limits hold for the push that meets them, not for
+/// a part of it (shortened pushes took bodies up to `3.3e-3` into walls in
+/// 20 of 300 narrow `f32` slots), and in a slot narrower than its walls'
+/// paddings (their limits ask for opposite pushes) the deepest limit
+/// alone would drive the body towards the other wall.
 ///
 /// Why such a push keeps the limits: the distance to a triangle is convex,
 /// so a push `d` gains at least `n . d` on a triangle whose exact
@@ -950,11 +960,11 @@ fn crease_push<T: Real>(limits: &mut SmallVec<[Limit<T>; 8]>, opts: &RobustOptio
     limits.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
     let solved = limits.len().min(DEPENETRATION_LIMITS);
     let push = least_push(&limits[..solved], opts)?;
-    let tol = T::c(opts.feasible_ulps * T::unit_roundoff()) * (norm(&push) + limits[0].0.abs());
-    if !limits[solved..].iter().all(|(need, n)| dot(n, &push) >= need.clone() - &tol) {
-        return None;
-    }
-    (norm(&push) <= T::c(0.5 * opts.max_padding)).then_some(push)
+    let length = norm(&push);
+    let scale = limits.iter().fold(length.clone(), |m, (need, _)| m.max(need.abs()));
+    let tol = T::c(opts.feasible_ulps * T::unit_roundoff()) * scale;
+    let meets_all = limits.iter().all(|(need, n)| dot(n, &push) >= need.clone() - &tol);
+    (meets_all && length <= T::c(0.5 * opts.max_padding)).then_some(push)
 }
 
 /// The most limits one round solves for (the deepest ones; the next round
@@ -1017,4 +1027,49 @@ fn least_push<T: Real>(limits: &[(T, Vec3<T>)], opts: &RobustOptions) -> Option<
         }
     }
     best.map(|(_, d)| d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A review's finding (twenty-first session): [`least_push`] solves a
+    /// pair of limits whose directions differ by rounding noise (its
+    /// parallel test sees the rounding of `1 - c^2`) and accepts the noise
+    /// within a tolerance that grows with the pair's huge coefficients, so
+    /// [`crease_push`] must check every limit itself. Random sets of two to
+    /// four nearly parallel limits in `f32` (`1e-7` to `1e-5` radians
+    /// apart, needs within the `0.005` of a push): every push it returns
+    /// meets every limit within its own tolerance.
+    #[test]
+    fn crease_push_meets_every_limit_it_was_given() {
+        let opts = RobustOptions::default();
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut uniform = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut accepted = 0;
+        for _ in 0..20_000 {
+            let base = [uniform() - 0.5, uniform() - 0.5, uniform() - 0.5];
+            let mut limits: SmallVec<[Limit<f32>; 8]> = SmallVec::new();
+            for _ in 0..2 + (uniform() * 3.0) as usize {
+                let angle = 10f64.powf(-7.0 + 2.0 * uniform());
+                let tilt = [uniform() - 0.5, uniform() - 0.5, uniform() - 0.5];
+                let v = Vec3::<f32>::from_fn(|i, _| (base[i] + angle * tilt[i]) as f32);
+                let Some(n) = normalize(&v) else { continue };
+                limits.push((((uniform() - 0.5) * 0.01) as f32, n));
+            }
+            let Some(push) = crease_push(&mut limits.clone(), &opts) else { continue };
+            accepted += 1;
+            let scale = limits.iter().fold(norm(&push), |m, (need, _)| m.max(need.abs()));
+            let tol = (opts.feasible_ulps * f32::unit_roundoff()) as f32 * scale;
+            for (need, n) in &limits {
+                assert!(dot(n, &push) >= need - tol, "push {push:?} misses ({need:e}, {n:?}) by more than {tol:e}");
+            }
+        }
+        assert!(accepted > 1_000, "only {accepted} pushes accepted");
+    }
 }

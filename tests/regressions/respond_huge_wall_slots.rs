@@ -9,14 +9,19 @@
 //! (`skin_in_crease`, the fix of fuzz finding F34) must not move the body
 //! there. Two of its drafts did, found by a random probe of 300 such slots
 //! (the code before left a body inside in one, the first draft in 20, up
-//! to `3.3e-3` deep, the second in 3; the final code in the same one): one
-//! shortened pushes longer than its limits' reach (`max_padding / 2`)
-//! instead of refusing them, and the huge wall's direction, off by `0.03`
-//! radians, made a push along the tessellated wall seem to gain on it: the
-//! body ended `4.7e-4` inside; the other set no limit for the huge wall
-//! where its distance, off by more than `0.01`, put it beyond reach, and a
-//! push towards it ended `6.5e-4` inside. Both scenes below are that
-//! probe's; the first failed on the first draft, the second on both.
+//! to `3.3e-3` deep, the second in 3; the final code in the same one as
+//! the code before). The first trusted the huge wall's direction, off by
+//! `0.03` radians (its closest point is off by `u s`, `0.03` radii at
+//! `s = 5e5` in `f32`): a push along the tessellated wall seemed to gain
+//! on the huge one, and the draft shortened such pushes, longer than its
+//! limits' reach, instead of refusing them; the body ended `4.7e-4`
+//! inside. The second set no limit for the huge wall where its distance,
+//! off by more than `0.01`, put it beyond reach, and a push towards it
+//! ended `6.5e-4` inside. Where a triangle whose padding is capped could
+//! be within reach, the push is now refused, and so is any push longer
+//! than the reach; the first scene fails only without both, the second
+//! without the first (or with the reach not widened by the capped
+//! triangle's error).
 
 use std::sync::Arc;
 use sweepslide::geom::{Ellipsoid, Vec3, vec3};
@@ -85,11 +90,10 @@ impl Slot {
     }
 }
 
-/// The draft that shortened long pushes: an ellipsoid in a slot `1.5e-5`
-/// radii wider than itself, at the origin, the huge wall's vertices `5e5`
-/// away.
+/// The first draft's scene: an ellipsoid in a slot `1.5e-5` radii wider
+/// than itself, at the origin, the huge wall's vertices `5e5` away.
 #[test]
-fn a_push_longer_than_its_limits_reach_is_refused() {
+fn a_narrow_slot_beside_a_huge_wall_is_not_entered() {
     let (d, w) = (505697.6071084646, 1.5389246202314846);
     let slot = Slot {
         huge: [[-w, -d, -335715.78098579904], [-w, -d, 675679.4332311301], [-w, d, 169981.82612266557]],
@@ -106,11 +110,11 @@ fn a_push_longer_than_its_limits_reach_is_refused() {
     assert!(worst <= 0.0, "penetration {worst:e}");
 }
 
-/// The draft that trusted the huge wall's distance: a sphere in a slot
+/// The second draft's scene: a sphere in a slot
 /// `8.8e-4` radii wider than itself, `6.2e3` from the origin (an `f32`
 /// spacing of `2.4e-4`), the huge wall's vertices `8.8e5` away.
 #[test]
-fn a_huge_wall_measured_beyond_reach_still_limits_the_push() {
+fn a_huge_wall_measured_beyond_reach_still_forbids_the_push() {
     let (d, w) = (883890.5631233916, 0.28202908337382815);
     let slot = Slot {
         huge: [[w, -d, -601845.4901401768], [w, -d, 1165935.6361066063], [w, d, 282045.0729832148]],
