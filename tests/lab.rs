@@ -553,6 +553,39 @@ fn velocity_given_on_the_command_line_replaces_a_cases_recorded_velocities() {
     assert!(x == 0.0 && (z - 1.0).abs() < 1e-9, "the velocity asked for: {x}, {z}");
 }
 
+/// A review's finding (twenty-first session): a failed `run --trace F`
+/// deleted a file `F` the user already had (the trace was created empty
+/// before the run to check that it could be written, and removed when the
+/// run failed), and `--trace` naming the run's own case file overwrote
+/// it. Now an existing file is left as it was until the run succeeds, a
+/// trace file this run created is removed, and the input is refused.
+#[test]
+fn a_failed_run_leaves_an_existing_trace_file_alone_and_the_input_is_never_the_trace() {
+    let dir = std::env::temp_dir().join(format!("sweepslide-trace-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let kept = dir.join("kept.csv");
+    std::fs::write(&kept, "precious\n").unwrap();
+    let out = sweepslide(&["run", "--scene", "floor", "--velocity=1e300,0,0", "--trace", kept.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(std::fs::read_to_string(&kept).unwrap(), "precious\n");
+    let fresh = dir.join("fresh.csv");
+    let _ = std::fs::remove_file(&fresh);
+    let out = sweepslide(&["run", "--scene", "floor", "--velocity=1e300,0,0", "--trace", fresh.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!fresh.exists(), "a trace file this run created is not left empty");
+    let case = dir.join("case.json");
+    let text = r#"{"triangles": [[[-5,0,-5],[5,0,5],[5,0,-5]]], "radii": [1,1,1], "start": [0,2,0],
+        "frames": [{"velocity": [0,-0.5,0], "gravity": null}]}"#;
+    std::fs::write(&case, text).unwrap();
+    let out = sweepslide(&["run", "--case", case.to_str().unwrap(), "--trace", case.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("would overwrite"));
+    assert_eq!(std::fs::read_to_string(&case).unwrap(), text);
+    let out = sweepslide(&["run", "--scene", "floor", "--frames", "3", "--trace", kept.to_str().unwrap()]);
+    assert!(out.status.success());
+    assert_eq!(std::fs::read_to_string(&kept).unwrap().lines().count(), 4, "a header and three frames");
+}
+
 #[test]
 fn bad_scene_parameters_and_frame_counts_exit_with_code_2() {
     for args in [

@@ -268,12 +268,38 @@ fn write_trace(path: &std::path::Path, out: &RunOutput) -> Result<(), Error> {
     std::fs::write(path, csv).map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })
 }
 
+/// Checks, before the run, that the trace file `path` can be written, so
+/// that an unwritable one is reported before the run rather than after it,
+/// without changing a file that is there (it is opened to append, and
+/// written only once the run succeeds); returns whether this created it.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] if `path` is one of the run's `inputs` (the
+/// trace would overwrite the mesh or case it was made from), [`Error::Io`]
+/// if it cannot be opened for writing.
+fn open_trace<'a>(path: &std::path::Path, inputs: impl Iterator<Item = &'a PathBuf>) -> Result<bool, Error> {
+    let same = |input: &PathBuf| matches!((path.canonicalize(), input.canonicalize()), (Ok(a), Ok(b)) if a == b);
+    if let Some(input) = inputs.into_iter().find(|input| same(input)) {
+        return Err(Error::InvalidArgument {
+            what: "--trace".into(),
+            message: format!("{} is the run's input; the trace would overwrite it", input.display()),
+        });
+    }
+    let existed = path.exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })?;
+    Ok(!existed)
+}
+
 fn run_command(args: &RunArgs) -> Result<(), Failure> {
     let scene = scene_of(args)?;
-    // An unwritable trace file is reported before the run, not after it.
-    if let Some(path) = &args.trace {
-        std::fs::File::create(path).map_err(|e| Error::Io { path: path.clone(), message: e.to_string() })?;
-    }
+    let created_trace = match &args.trace {
+        Some(path) => open_trace(path, [&args.mesh, &args.case].into_iter().flatten())?,
+        None => false,
+    };
     let cfg = RunConfig {
         scene: Arc::new(scene),
         response: match args.response {
@@ -289,8 +315,9 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         seed: args.seed,
     };
     let out = run(&cfg).inspect_err(|_| {
-        // The trace file created above would be left empty.
-        if let Some(path) = &args.trace {
+        // A trace file created above would be left empty; one that was
+        // there is left as it was.
+        if let Some(path) = args.trace.as_ref().filter(|_| created_trace) {
             let _ = std::fs::remove_file(path);
         }
     })?;
