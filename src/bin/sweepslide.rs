@@ -212,6 +212,9 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
         (None, Some(path), _) | (None, None, Some(path)) => {
             let s = if args.mesh.is_some() { Scene::from_obj(path)? } else { Scene::from_case_file(path)? };
             warn_skipped(&s, &path.display().to_string());
+            if args.case.is_some() {
+                note_finding(path, args);
+            }
             (s, false)
         }
         (None, None, None) => unreachable!("clap requires --scene, --mesh or --case"),
@@ -244,6 +247,31 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
         warn_skipped(&scene, &format!("the scene at offset {},{},{}", o[0], o[1], o[2]));
     }
     Ok(scene)
+}
+
+/// Says on standard error where a finding file (a case under `"case"`, as
+/// the `compare_responses` fuzz target writes them) records another
+/// response or precision than this run uses: the run does not reproduce
+/// the finding unless they are passed with `--response` and
+/// `--precision`.
+fn note_finding(path: &std::path::Path, args: &RunArgs) {
+    let Some(finding) = std::fs::read_to_string(path)
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .filter(|v| v.get("case").is_some())
+    else {
+        return;
+    };
+    let response = args.response.to_possible_value().map(|v| v.get_name().to_string()).unwrap_or_default();
+    let precision = args.precision.to_string();
+    for (key, used) in [("response", response), ("precision", precision)] {
+        if let Some(recorded) = finding.get(key).and_then(|v| v.as_str()).filter(|r| !r.eq_ignore_ascii_case(&used)) {
+            eprintln!(
+                "note: {} records {key} `{recorded}`; this run uses `{used}` (pass --{key} {recorded} to reproduce it)",
+                path.display()
+            );
+        }
+    }
 }
 
 /// Says on standard error what loading `scene` left out (a file's invalid
@@ -441,8 +469,31 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
     }
     let elapsed = clock.elapsed().as_secs_f64();
     render(&args.out, &runs, Some(elapsed))?;
+    warn_failed(&runs);
     eprintln!("report written to {}/index.html in {elapsed:.0} s", args.out.display());
     Ok(())
+}
+
+/// Says on standard error how many runs of a report failed and why (the
+/// first five, with their scene, response and precision); the report lists
+/// them too.
+fn warn_failed(runs: &sweepslide::report::Runs) {
+    use sweepslide::report::matrix::SceneSource;
+    let failed: Vec<_> = runs.records.iter().filter_map(|r| r.outcome.as_ref().err().map(|e| (&r.entry, e))).collect();
+    if failed.is_empty() {
+        return;
+    }
+    eprintln!("warning: {} of {} runs failed (listed in the report):", failed.len(), runs.records.len());
+    for (entry, error) in failed.iter().take(5) {
+        let scene = match &entry.source {
+            SceneSource::Builtin { spec, .. } => spec.clone(),
+            SceneSource::Mesh { path } | SceneSource::Case { path } => path.display().to_string(),
+        };
+        eprintln!("  run {} ({scene}, {}, {}): {error}", entry.index, entry.response.name(), entry.precision);
+    }
+    if failed.len() > 5 {
+        eprintln!("  ... and {} more", failed.len() - 5);
+    }
 }
 
 fn merge_command(out: &std::path::Path, shards: &[PathBuf]) -> Result<(), Failure> {
@@ -451,6 +502,7 @@ fn merge_command(out: &std::path::Path, shards: &[PathBuf]) -> Result<(), Failur
     let runs = merge(parts)?;
     write_runs(out, &runs)?;
     render(out, &runs, None)?;
+    warn_failed(&runs);
     eprintln!("merged {} shards ({} runs) into {}/index.html", shards.len(), runs.records.len(), out.display());
     Ok(())
 }

@@ -227,11 +227,16 @@ impl Near {
 /// far-from-origin coordinates does not show up as jitter. The exact value
 /// is never negative (the triangle inequality); the 512-bit difference of
 /// path and net can round a few units of `2^-512` of the path below zero
-/// for straight motion, and is clamped at zero.
+/// for straight motion, and is clamped at zero. Zero without a displacement
+/// or a speed; NaN (not computable, and so not zero) when a position is
+/// NaN or infinite.
 #[must_use]
 pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
     let n = positions.len().saturating_sub(1);
-    if n == 0 || !(speed > 0.0) || positions.iter().any(|p| !p.iter().all(Real::is_finite)) {
+    if positions.iter().any(|p| !p.iter().all(Real::is_finite)) {
+        return f64::NAN;
+    }
+    if n == 0 || !(speed > 0.0) {
         return 0.0;
     }
     let k = (n / 4).max(1);

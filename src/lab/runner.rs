@@ -126,7 +126,8 @@ pub struct RunResult {
     /// over the frames (0 if none).
     #[serde(with = "super::json_float::number")]
     pub max_front_penetration: f64,
-    /// Jitter over the last quarter of the frames.
+    /// Jitter over the last quarter of the frames (NaN, written `"NaN"` in
+    /// JSON, for a run with NaN frames: not computable).
     #[serde(with = "super::json_float::number")]
     pub jitter: f64,
     /// Largest number of collision checks in one frame (the freeze metric).
@@ -287,6 +288,16 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     let first_push = std::iter::once(&scene.velocity).chain(scripted).find(|v| **v != [0.0; 3]);
     if first_push.is_none() && !has_gravity {
         return Err(Error::ZeroVelocity);
+    }
+    // A motion given that this precision rounds to none would run as a
+    // body at rest.
+    let vanishes = |v: &[f64; 3]| *v != [0.0; 3] && vec3::<T>(v[0], v[1], v[2]).iter().all(|x| x.is_zero());
+    let motions = std::iter::once(("velocity", &scene.velocity)).chain(scripted.iter().map(|v| ("velocity", v)));
+    if let Some((what, v)) = motions.chain([("gravity", &scene.gravity)]).find(|(_, v)| vanishes(v)) {
+        return Err(Error::InvalidArgument {
+            what: what.into(),
+            message: format!("{v:?} rounds to zero in {}", T::name()),
+        });
     }
     let mut steering = Steering::new(scene, cfg.seed);
     let start: Vec3<T> = vec3(scene.start[0], scene.start[1], scene.start[2]);

@@ -418,6 +418,15 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
         }
         "slot" => {
             let g = in_range(0.0, 10.0, 0.01)?;
+            // The walls' coordinates are rounded to `f32` like every
+            // built-in scene's: below about `1.2e-7` a clearance rounds
+            // to none, and the scene would not be what its name says.
+            if g > 0.0 && q(1.0 + g / 2.0) == 1.0 {
+                return Err(bad(
+                    spec,
+                    format!("clearance {g} rounds to 0 in the scene's f32 coordinates (the least is 1.2e-7)"),
+                ));
+            }
             let x = 1.0 + g / 2.0;
             b.quad([-x, -5.0, -50.0], [-x, 5.0, -50.0], [-x, 5.0, 50.0], [-x, -5.0, 50.0], [1.0, 0.0, 0.0]);
             b.quad([x, -5.0, -50.0], [x, 5.0, -50.0], [x, 5.0, 50.0], [x, -5.0, 50.0], [-1.0, 0.0, 0.0]);

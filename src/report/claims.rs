@@ -33,16 +33,47 @@ fn describe(r: &RunResult) -> String {
     format!("{} / {}{seed}", r.scene, r.precision)
 }
 
-/// The worst run by `key` among `rs`, described with the value.
+/// The worst run by `key` among `rs`, described with the value (a NaN
+/// value, which sorts above every other, says it could not be computed).
 fn worst<'a>(rs: impl Iterator<Item = &'a RunResult>, key: impl Fn(&RunResult) -> f64, unit: &str) -> String {
-    rs.max_by(|a, b| key(a).total_cmp(&key(b)))
-        .map_or("no runs".into(), |r| format!("worst {:.3e}{unit} ({})", key(r), describe(r)))
+    rs.max_by(|a, b| key(a).total_cmp(&key(b))).map_or("no runs".into(), |r| match key(r) {
+        k if k.is_nan() => format!("not computable ({}: NaN frames)", describe(r)),
+        k => format!("worst {k:.3e}{unit} ({})", describe(r)),
+    })
+}
+
+/// The smallest snag ratio of `rs` and over how many runs (those with an
+/// ideal slide), or that there are none.
+fn smallest_snag<'a>(rs: impl Iterator<Item = &'a RunResult>, what: &str) -> String {
+    let ratios: Vec<f64> = rs.filter_map(|r| r.snag).collect();
+    match ratios.iter().copied().reduce(f64::min) {
+        Some(least) => format!("smallest snag ratio {least:.6} over {} {what}", ratios.len()),
+        None => format!("no {what}"),
+    }
 }
 
 /// The precisions with `f32`'s significand (the hardware float and its
 /// MPFR twin).
 fn single(r: &RunResult) -> bool {
     r.precision == "f32" || r.precision == "mpfr24"
+}
+
+/// The runs of `rs` without NaN frames, and how many had some: after a
+/// NaN position a run shows nothing (no penetration can be measured, no
+/// jitter computed), so it cannot show an absence and is left out of the
+/// claims that judge one, and said ([`left_out`]).
+fn without_nan<'a>(rs: impl Iterator<Item = &'a RunResult>) -> (Vec<&'a RunResult>, usize) {
+    let (clean, nan): (Vec<&RunResult>, Vec<&RunResult>) = rs.partition(|r| r.nan_frames == 0);
+    (clean, nan.len())
+}
+
+/// The note on the runs [`without_nan`] left out (empty when none).
+fn left_out(nan_runs: usize) -> String {
+    if nan_runs == 0 {
+        String::new()
+    } else {
+        format!(" (left out: {nan_runs} runs with NaN frames, which show nothing after the NaN)")
+    }
 }
 
 fn is_base(r: &RunResult, base: &str) -> bool {
@@ -92,14 +123,17 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
         ),
     });
     let wide_pen: Vec<&RunResult> = pen.iter().copied().filter(|r| !single(r)).collect();
+    let (wide, wide_nan) = without_nan(of("fauerby").filter(|r| !single(r)));
     claims.push(Claim {
         source: "ALGORITHMS.md section 8",
         text: "Fauerby penetrates only in f32, never in f64.",
-        reproduced: !pen.is_empty() && wide_pen.is_empty(),
+        reproduced: !pen.is_empty() && wide_pen.is_empty() && !wide.is_empty(),
         evidence: if wide_pen.is_empty() {
             format!(
-                "all {} penetrating Fauerby runs are f32 or its twin mpfr24; none at 53 bits or more{}",
+                "all {} penetrating Fauerby runs are f32 or its twin mpfr24; none of {} at 53 bits or more{}{}",
                 pen.len(),
+                wide.len(),
+                left_out(wide_nan),
                 behind("fauerby")
             )
         } else {
@@ -112,7 +146,7 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
         },
     });
     let corner = |resp: &'static str| of(resp).filter(|r| is_base(r, "corner")).filter(hw).collect::<Vec<_>>();
-    let fj = corner("fauerby");
+    let (fj, fj_nan) = without_nan(corner("fauerby").into_iter());
     claims.push(Claim {
         source: "Linahan 2012, III.B, Fig. 2-3",
         text: "Fauerby's response jitters in an obtuse corner instead of coming to rest.",
@@ -121,7 +155,8 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
             .iter()
             .map(|r| format!("jitter {:.3} in {}", r.jitter, describe(r)))
             .collect::<Vec<_>>()
-            .join("; "),
+            .join("; ")
+            + &left_out(fj_nan),
     });
     let wedge: Vec<&RunResult> = of("fauerby").filter(|r| is_base(r, "wedge")).filter(hw).collect();
     claims.push(Claim {
@@ -135,12 +170,13 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
             .join("; "),
     });
     let lpen: Vec<&RunResult> = of("linahan").filter(|r| r.counted_penetration().0 > 0).collect();
+    let (lclean, lnan) = without_nan(of("linahan"));
     claims.push(Claim {
         source: "Linahan 2012, IV",
         text: "Linahan's response never lets the sphere penetrate the mesh.",
-        reproduced: lpen.is_empty(),
+        reproduced: lpen.is_empty() && !lclean.is_empty(),
         evidence: if lpen.is_empty() {
-            format!("no penetrating frame in {} Linahan runs{}", of("linahan").count(), behind("linahan"))
+            format!("no penetrating frame in {} Linahan runs{}{}", lclean.len(), left_out(lnan), behind("linahan"))
         } else {
             format!(
                 "{} of {} Linahan runs penetrate: {}; {}{}",
@@ -152,7 +188,7 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
             )
         },
     });
-    let lj = corner("linahan");
+    let (lj, lj_nan) = without_nan(corner("linahan").into_iter());
     claims.push(Claim {
         source: "Linahan 2012, III.G",
         text: "Linahan's response comes to rest in corners: no jitter.",
@@ -161,34 +197,35 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
             .iter()
             .map(|r| format!("jitter {:.3e} in {}", r.jitter, describe(r)))
             .collect::<Vec<_>>()
-            .join("; "),
+            .join("; ")
+            + &left_out(lj_nan),
     });
     let over: Vec<&RunResult> = of("linahan").filter(|r| r.max_pass_iterations > 3).collect();
     claims.push(Claim {
         source: "Linahan 2012, III.G",
         text: "Linahan's response needs at most three collision checks per pass.",
-        reproduced: over.is_empty(),
-        evidence: format!(
-            "largest count per pass {} (per frame {}: two passes when the scene has gravity){}",
-            of("linahan").map(|r| r.max_pass_iterations).max().unwrap_or(0),
-            of("linahan").map(|r| r.max_iterations).max().unwrap_or(0),
-            if over.is_empty() {
-                String::new()
-            } else {
-                format!("; more in {}", over.iter().map(|r| describe(r)).collect::<Vec<_>>().join(", "))
-            }
-        ),
+        reproduced: over.is_empty() && of("linahan").next().is_some(),
+        evidence: match (
+            of("linahan").map(|r| r.max_pass_iterations).max(),
+            of("linahan").map(|r| r.max_iterations).max(),
+        ) {
+            (Some(pass), Some(frame)) => format!(
+                "largest count per pass {pass} (per frame {frame}: two passes when the scene has gravity){}",
+                if over.is_empty() {
+                    String::new()
+                } else {
+                    format!("; more in {}", over.iter().map(|r| describe(r)).collect::<Vec<_>>().join(", "))
+                }
+            ),
+            _ => "no Linahan runs".into(),
+        },
     });
     let snags: Vec<&RunResult> = of("linahan").filter(|r| r.snag.is_some_and(|s| s < SNAG_THRESHOLD)).collect();
     claims.push(Claim {
         source: "Linahan 2012, IV (open problem)",
         text: "Linahan's response snags on triangle edges.",
         reproduced: !snags.is_empty(),
-        evidence: format!(
-            "smallest snag ratio {} over {} runs with an ideal slide",
-            of("linahan").filter_map(|r| r.snag).fold(f64::INFINITY, f64::min),
-            of("linahan").filter(|r| r.snag.is_some()).count()
-        ),
+        evidence: smallest_snag(of("linahan"), "runs with an ideal slide"),
     });
     let nans: Vec<&RunResult> = all.iter().copied().filter(|r| r.response != "robust" && r.nan_frames > 0).collect();
     claims.push(Claim {
@@ -205,12 +242,17 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
         },
     });
     let rpen: Vec<&RunResult> = of("robust").filter(|r| r.counted_penetration().0 > 0).collect();
+    let (rclean, rnan_runs) = without_nan(of("robust"));
     claims.push(Claim {
         source: "sweepslide",
         text: "The robust response never penetrates, in any precision of the table.",
-        reproduced: rpen.is_empty(),
+        reproduced: rpen.is_empty() && !rclean.is_empty() && rnan_runs == 0,
         evidence: if rpen.is_empty() {
-            format!("no penetrating frame in {} robust runs (checked exactly, 512 bits)", of("robust").count())
+            format!(
+                "no penetrating frame in {} robust runs (checked exactly, 512 bits){}",
+                rclean.len(),
+                left_out(rnan_runs)
+            )
         } else {
             format!("{} robust runs penetrate; {}", rpen.len(), worst(rpen.iter().copied(), counted, ""))
         },
@@ -219,27 +261,23 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
     claims.push(Claim {
         source: "sweepslide",
         text: "The robust response never produces NaN.",
-        reproduced: rnan == 0,
-        evidence: format!("{rnan} robust runs with NaN frames"),
+        reproduced: rnan == 0 && of("robust").next().is_some(),
+        evidence: format!("{rnan} of {} robust runs with NaN frames", of("robust").count()),
     });
     let rest: Vec<&RunResult> =
         of("robust").filter(|r| ["corner", "dead-end", "wedge", "crease"].iter().any(|b| is_base(r, b))).collect();
     claims.push(Claim {
         source: "sweepslide",
         text: "The robust response does not jitter in corners, wedges, creases and dead ends.",
-        reproduced: rest.iter().all(|r| r.jitter <= JITTER_THRESHOLD),
+        reproduced: !rest.is_empty() && rest.iter().all(|r| r.jitter <= JITTER_THRESHOLD),
         evidence: worst(rest.iter().copied(), |r| r.jitter, " jitter"),
     });
     let rs: Vec<&RunResult> = of("robust").filter(|r| r.snag.is_some()).collect();
     claims.push(Claim {
         source: "sweepslide",
         text: "The robust response does not snag: it slides at least 99.9% of the ideal distance.",
-        reproduced: rs.iter().all(|r| r.snag.is_some_and(|s| s >= SNAG_THRESHOLD)),
-        evidence: format!(
-            "smallest snag ratio {:.6} over {} runs",
-            rs.iter().filter_map(|r| r.snag).fold(f64::INFINITY, f64::min),
-            rs.len()
-        ),
+        reproduced: !rs.is_empty() && rs.iter().all(|r| r.snag.is_some_and(|s| s >= SNAG_THRESHOLD)),
+        evidence: smallest_snag(rs.iter().copied(), "runs"),
     });
     claims
 }

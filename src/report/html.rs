@@ -25,7 +25,9 @@ fn summary_row(out: &mut String, response: &str, precision: &str, rs: &[&RunResu
     let max = |f: &dyn Fn(&RunResult) -> f64| rs.iter().map(|r| f(r)).fold(0.0, f64::max);
     let pen = rs.iter().map(|r| r.counted_penetration().1).fold(0.0, f64::max);
     let pen_frames: usize = rs.iter().map(|r| r.counted_penetration().0).sum();
-    let jitter = rs.iter().filter(|r| r.motion == "constant").map(|r| r.jitter).fold(0.0, f64::max);
+    // Over the constant pushes whose jitter could be computed (a run with
+    // NaN frames has none); "-" when there are none.
+    let jitter = rs.iter().filter(|r| r.motion == "constant" && !r.jitter.is_nan()).map(|r| r.jitter).reduce(f64::max);
     let sum = |f: &dyn Fn(&RunResult) -> usize| rs.iter().map(|r| f(r)).sum::<usize>();
     let snag = rs.iter().filter_map(|r| r.snag).fold(f64::INFINITY, f64::min);
     let mut times: Vec<f64> = rs.iter().map(|r| r.ns_per_move).collect();
@@ -39,7 +41,7 @@ fn summary_row(out: &mut String, response: &str, precision: &str, rs: &[&RunResu
         sci(pen),
         pen_frames,
         sci(all_pen),
-        sci(jitter),
+        jitter.map_or_else(|| "-".into(), sci),
         rs.iter().map(|r| r.max_iterations).max().unwrap_or(0),
         if sum(&|r| r.nan_frames) > 0 { "no" } else { "yes" },
         sum(&|r| r.nan_frames),

@@ -87,12 +87,22 @@ pub fn write_runs(dir: &Path, runs: &Runs) -> Result<(), Error> {
 ///
 /// # Errors
 /// [`Error::Io`] when it cannot be read, [`Error::InvalidArgument`] (with
-/// the line and column) when it is malformed, not UTF-8 included.
+/// the line and column) when it is malformed, not UTF-8 included, or when
+/// a run counts more frames entered from behind than penetrating frames
+/// (no run writes that; the counts that subtract them would wrap).
 pub fn read_runs(dir: &Path) -> Result<Runs, Error> {
     let path = dir.join("runs.json");
     let bytes = std::fs::read(&path).map_err(|e| io(&path, e))?;
-    serde_json::from_slice(&bytes)
-        .map_err(|e| Error::InvalidArgument { what: path.display().to_string(), message: e.to_string() })
+    let bad = |message: String| Error::InvalidArgument { what: path.display().to_string(), message };
+    let runs: Runs = serde_json::from_slice(&bytes).map_err(|e| bad(e.to_string()))?;
+    let inconsistent =
+        runs.records.iter().enumerate().find_map(|(k, r)| {
+            r.outcome.as_ref().ok().filter(|o| o.back_face_frames > o.penetrating_frames).map(|_| k)
+        });
+    match inconsistent {
+        Some(k) => Err(bad(format!("record {k}: more frames entered from behind than penetrating frames"))),
+        None => Ok(runs),
+    }
 }
 
 /// Combines shards into the whole matrix.
@@ -174,7 +184,9 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
         out += &format!(
             "{},{group},\"{}\",{},{},{},{},{},{:e},{},{},{:e},{:e},{},{},{},{},{},{},{},{snag},{x:e},{y:e},{z:e},{:.1}\n",
             l.index,
-            r.scene,
+            // A quoted CSV field doubles its quotes (a mesh's file name may
+            // hold one).
+            r.scene.replace('"', "\"\""),
             r.response,
             r.detection,
             r.precision,
