@@ -4,11 +4,12 @@
 
 use proptest::prelude::*;
 use rug::Float;
+use std::path::Path;
 use std::process::Command;
 use std::sync::Arc;
 use sweepslide::geom::{Vec3, vec3};
 use sweepslide::lab::metrics::{EXACT_BITS, jitter, penetrated, penetration, snag_ratio, triangle_distance_sq};
-use sweepslide::lab::{Precision, RunConfig, run};
+use sweepslide::lab::{Precision, RunConfig, Scene, run};
 use sweepslide::respond::Response;
 use sweepslide::world::{TriangleMesh, World};
 
@@ -598,4 +599,43 @@ fn bad_scene_parameters_and_frame_counts_exit_with_code_2() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
         assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: "), "{args:?}");
     }
+}
+
+/// A review's findings (twenty-first session): input that the scene's or
+/// the run's rounding would silently change into something else. A slot
+/// clearance below `1.2e-7` rounded to none in the scene's `f32`
+/// coordinates (`slot:1e-8` ran as `slot:0`); a velocity of `1e-50` ran
+/// as a body at rest in `f32`. Both are refused now, and the least values
+/// that survive the rounding still run.
+#[test]
+fn input_that_rounds_to_nothing_is_refused() {
+    for (args, needle) in [
+        (["run", "--scene", "slot:1e-8", "--precision", "f64", "--velocity=0,0,0.1"], "rounds to 0"),
+        (["run", "--scene", "floor", "--precision", "f32", "--velocity=1e-50,0,0"], "rounds to zero in f32"),
+        (["run", "--scene", "floor", "--precision", "f32", "--gravity=0,-1e-50,0"], "rounds to zero in f32"),
+    ] {
+        let out = sweepslide(&[&args[..], &["--frames", "3"]].concat());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    }
+    for args in [["run", "--scene", "slot:1.2e-7"], ["run", "--scene", "floor"]] {
+        let out = sweepslide(&[&args[..], &["--precision", "f32", "--frames", "3"]].concat());
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+}
+
+/// A run that reaches a NaN position has no jitter to speak of: it is NaN
+/// (written `"NaN"` in JSON), not the 0 of a body at rest that it used to
+/// be (a review, twenty-first session: Linahan's NaN runs counted as
+/// evidence that it comes to rest).
+#[test]
+fn jitter_of_a_run_with_nan_frames_is_nan() {
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz/linahan-nan-narrow-slot.json");
+    let scene = Arc::new(Scene::from_case_file(&case).unwrap());
+    let cfg = RunConfig { scene, response: Response::Linahan, detection: None, precision: Precision::F64, seed: 1 };
+    let r = run(&cfg).unwrap().result;
+    assert!(r.nan_frames > 0, "the case no longer reaches NaN: {r:?}");
+    assert!(r.jitter.is_nan(), "jitter {}", r.jitter);
+    assert!(serde_json::to_string(&r).unwrap().contains(r#""jitter":"NaN""#));
 }

@@ -209,3 +209,37 @@ fn unreadable_runs_json_is_io_and_malformed_or_non_utf8_is_invalid_argument() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A review's finding (twenty-first session): with no runs, six claims
+/// read "reproduced" ("no penetrating frame in 0 robust runs") and the
+/// evidence printed a snag ratio of `inf`; and runs that reached NaN
+/// counted as evidence of an absence. Without runs nothing is reproduced;
+/// a NaN run is left out of the absence claims, and said.
+#[test]
+fn claims_need_runs_and_nan_runs_show_no_absence() {
+    use sweepslide::report::claims::evaluate;
+    let (info, _) = matrix(true, &[], &[]);
+    let empty = Runs { info: sweepslide::report::matrix::MatrixInfo { runs: 0, ..info.clone() }, records: vec![] };
+    for claim in evaluate(&empty) {
+        assert!(!claim.reproduced, "reproduced without runs: {claim:?}");
+        assert!(!claim.evidence.contains("inf"), "{claim:?}");
+    }
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz/linahan-nan-narrow-slot.json");
+    let (info, entries) = matrix(true, &[], std::slice::from_ref(&case));
+    let mut picked: Vec<_> = entries
+        .into_iter()
+        .filter(|e| e.response == sweepslide::respond::Response::Linahan && format!("{:?}", e.source).contains("nan"))
+        .filter(|e| e.group == sweepslide::report::matrix::Group::Main)
+        .collect();
+    for (i, e) in picked.iter_mut().enumerate() {
+        e.index = i;
+    }
+    let info = sweepslide::report::matrix::MatrixInfo { runs: picked.len(), ..info };
+    let runs = Runs { info, records: run_entries(&picked, 1, &|| {}, &|_| {}).unwrap() };
+    let nan_runs = runs.records.iter().filter(|r| r.outcome.as_ref().is_ok_and(|o| o.nan_frames > 0)).count();
+    assert!(nan_runs > 0, "the case no longer reaches NaN");
+    let never = evaluate(&runs).into_iter().find(|c| c.text.starts_with("Linahan's response never lets")).unwrap();
+    assert!(never.evidence.contains(&format!("left out: {nan_runs} runs with NaN frames")), "{never:?}");
+    let clean = runs.records.len() - nan_runs;
+    assert_eq!(never.reproduced, clean > 0 && never.evidence.starts_with("no penetrating frame"), "{never:?}");
+}
