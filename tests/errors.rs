@@ -699,6 +699,21 @@ fn malformed_case_files_are_invalid_arguments_with_the_reason() {
             "gravity changes",
         ),
         ("missing", r#"{"radii": [1,1,1], "start": [0,2,0], "frames": []}"#, "triangles"),
+        // A wrong type names its line and column, in a plain case and in a
+        // finding file's (they once had none: the case was read from a
+        // parsed value).
+        (
+            "wrong-type",
+            &format!("{{\"triangles\": [{tri}],\n \"radii\": [1,1,\"x\"], \"start\": [0,2,0], \"frames\": []}}"),
+            "line 2 column",
+        ),
+        (
+            "wrong-type-finding",
+            &format!(
+                "{{\"response\": \"linahan\", \"case\": {{\"triangles\": [{tri}],\n\n \"radii\": 3, \"start\": [0,2,0], \"frames\": []}}}}"
+            ),
+            "line 3 column",
+        ),
         (
             "misspelt",
             &format!(

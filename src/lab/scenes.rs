@@ -557,8 +557,17 @@ impl Scene {
         {
             return Err(bad(format!("unknown key `{k}` in a finding file (known: {})", FINDING_KEYS.join(", "))));
         }
-        let case: Case =
-            serde_json::from_value(value.get("case").unwrap_or(&value).clone()).map_err(|e| bad(e.to_string()))?;
+        // The case is read from the text, not from `value`, so that its
+        // errors (a wrong type, a missing field) name their line and column.
+        #[derive(serde::Deserialize)]
+        struct Finding {
+            case: Case,
+        }
+        let case = match value.get("case") {
+            Some(_) => serde_json::from_str::<Finding>(&text).map(|f| f.case),
+            None => serde_json::from_str::<Case>(&text),
+        }
+        .map_err(|e| bad(e.to_string()))?;
         let gravity = |f: &Frame| f.gravity.unwrap_or([0.0; 3]);
         let first = case.frames.first().ok_or_else(|| bad("the case has no frame".into()))?;
         if case.frames.iter().any(|f| gravity(f) != gravity(first)) {
