@@ -639,3 +639,32 @@ fn jitter_of_a_run_with_nan_frames_is_nan() {
     assert!(r.jitter.is_nan(), "jitter {}", r.jitter);
     assert!(serde_json::to_string(&r).unwrap().contains(r#""jitter":"NaN""#));
 }
+
+/// A review's finding (twenty-first session): a triangle that collapses
+/// when its vertices are rounded into the run's precision (here one
+/// `1e8` from the origin with sides of 1, in `f32`) ran with no word; it
+/// collides as the segment it became, and the run now says so.
+#[test]
+fn triangles_degenerate_in_the_runs_precision_are_noted() {
+    let vertices =
+        vec![[1e8, 0.0, 0.0], [1e8 + 1.0, 0.0, 0.0], [1e8, 0.0, 1.0], [0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+    let mesh = Arc::new(TriangleMesh::new(vertices, vec![[0, 2, 1], [3, 5, 4]]).unwrap());
+    assert_eq!(World::<f32>::new(mesh.clone()).unwrap().degenerate_in_backend(), 1);
+    assert_eq!(World::<f64>::new(mesh).unwrap().degenerate_in_backend(), 0);
+    let dir = std::env::temp_dir().join(format!("sweepslide-degenerate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("collapsing.obj");
+    std::fs::write(
+        &path,
+        "v 100000000 0 0\nv 100000001 0 0\nv 100000000 0 1\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\nf 4 6 5\n",
+    )
+    .unwrap();
+    let noted = |precision: &str| {
+        let args = ["run", "--mesh", path.to_str().unwrap(), "--precision", precision, "--start=0.3,2,0.3"];
+        let out = sweepslide(&[&args[..], &["--velocity=0,-0.1,0", "--frames", "3"]].concat());
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stderr).contains("1 triangle(s) of the scene are degenerate")
+    };
+    assert!(noted("f32"));
+    assert!(!noted("f64"));
+}

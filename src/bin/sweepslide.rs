@@ -352,6 +352,13 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
     if let Some(path) = &args.trace {
         write_trace(path, &out)?;
     }
+    if out.degenerate_triangles > 0 {
+        eprintln!(
+            "note: {} triangle(s) of the scene are degenerate in {} (zero area once rounded): they collided as the \
+             segments or points they became",
+            out.degenerate_triangles, args.precision
+        );
+    }
     let r = &out.result;
     if args.json {
         out!("{}", serde_json::to_string(r).expect("metrics serialise"));

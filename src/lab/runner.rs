@@ -213,6 +213,10 @@ pub struct RunOutput {
     pub result: RunResult,
     /// One record per frame.
     pub frames: Vec<FrameRecord>,
+    /// Triangles of the scene degenerate once rounded into the run's
+    /// precision ([`World::degenerate_in_backend`]): they collided as the
+    /// segments or points they became.
+    pub degenerate_triangles: usize,
 }
 
 /// The contact decisions of a move: triangle and feature of each contact.
@@ -429,7 +433,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         snag: scene.ideal.and_then(|ideal| snag_ratio(&start, &p, ideal, frames)),
         ns_per_move: ns as f64 / moves.max(1) as f64,
     };
-    Ok(RunOutput { result, frames: records })
+    Ok(RunOutput { result, frames: records, degenerate_triangles: world.degenerate_in_backend() })
 }
 
 /// The most frames one run plays (every frame's position and record is

@@ -341,6 +341,19 @@ impl<T: Real> World<T> {
         Ok(World { mesh, vertices, slack })
     }
 
+    /// How many triangles are degenerate once their vertices are rounded
+    /// into `T` (zero area or collinear, as [`TriangleMesh::new`] judges
+    /// them, from the rounded values): they still collide, as the segments
+    /// or points they became, but no longer as the triangles the mesh gave.
+    #[must_use]
+    pub fn degenerate_in_backend(&self) -> usize {
+        let rounded = |i: u32| self.vertices[i as usize].map(|x| x.to_f64());
+        let triangles = self.mesh.triangles.iter().enumerate();
+        triangles
+            .filter(|(k, t)| Triangle::new(rounded(t[0]), rounded(t[1]), rounded(t[2])).validate(*k).is_err())
+            .count()
+    }
+
     /// The same world in another backend `U`, converted from this world's
     /// stored values (through MPFR, exactly when `U` has at least as many
     /// bits), so `U` sees the very numbers `T` computed with. The
