@@ -347,6 +347,11 @@ impl<T: Real> World<T> {
     /// or points they became, but no longer as the triangles the mesh gave.
     #[must_use]
     pub fn degenerate_in_backend(&self) -> usize {
+        // Without conversion slack every vertex is the mesh's own, and the
+        // mesh keeps only valid triangles (every `f64` and wider run).
+        if self.slack == 0.0 {
+            return 0;
+        }
         let rounded = |i: u32| self.vertices[i as usize].map(|x| x.to_f64());
         let triangles = self.mesh.triangles.iter().enumerate();
         triangles
