@@ -663,7 +663,12 @@ fn triangles_degenerate_in_the_runs_precision_are_noted() {
         let args = ["run", "--mesh", path.to_str().unwrap(), "--precision", precision, "--start=0.3,2,0.3"];
         let out = sweepslide(&[&args[..], &["--velocity=0,-0.1,0", "--frames", "3"]].concat());
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        String::from_utf8_lossy(&out.stderr).contains("1 triangle(s) of the scene are degenerate")
+        let json = sweepslide(&[&args[..], &["--velocity=0,-0.1,0", "--frames", "3", "--json"]].concat());
+        let v: serde_json::Value = serde_json::from_slice(&json.stdout).expect("one JSON object");
+        let counted = v["degenerate_triangles"].as_u64().expect("the count is in the JSON");
+        let said = String::from_utf8_lossy(&out.stderr).contains("1 triangle(s) of the scene are degenerate");
+        assert_eq!(said, counted == 1, "{precision}: note and count disagree");
+        said
     };
     assert!(noted("f32"));
     assert!(!noted("f64"));

@@ -243,3 +243,57 @@ fn claims_need_runs_and_nan_runs_show_no_absence() {
     let clean = runs.records.len() - nan_runs;
     assert_eq!(never.reproduced, clean > 0 && never.evidence.starts_with("no penetrating frame"), "{never:?}");
 }
+
+/// A mesh whose triangle collapses once rounded into `f32` (one `1e8` from
+/// the origin with sides of 1): the page, `results.csv` and `runs.json`
+/// say so for its `f32` runs and for no other (a review, twenty-first
+/// session, found only `sweepslide run` saying it).
+#[test]
+fn a_report_says_which_scenes_have_triangles_degenerate_in_a_precision() {
+    let dir = std::env::temp_dir().join(format!("sweepslide-degenerate-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mesh = dir.join("collapsing.obj");
+    std::fs::write(
+        &mesh,
+        "v 100000000 0 0\nv 100000001 0 0\nv 100000000 0 1\nv -5 0 -5\nv 5 0 -5\nv -5 0 5\nf 1 3 2\nf 4 6 5\n",
+    )
+    .unwrap();
+    let (info, entries) = matrix(true, std::slice::from_ref(&mesh), &[]);
+    let mut picked: Vec<_> = entries
+        .into_iter()
+        .filter(|e| format!("{:?}", e.source).contains("collapsing") && ["f32", "f64"].contains(&e.precision.as_str()))
+        .collect();
+    assert!(picked.iter().any(|e| e.precision == "f32") && picked.iter().any(|e| e.precision == "f64"));
+    for (i, e) in picked.iter_mut().enumerate() {
+        e.index = i;
+    }
+    let info = sweepslide::report::matrix::MatrixInfo { runs: picked.len(), ..info };
+    let runs = Runs { info, records: run_entries(&picked, 1, &|| {}, &|_| {}).unwrap() };
+    for r in &runs.records {
+        let o = r.outcome.as_ref().expect("the mesh runs");
+        assert_eq!(o.degenerate_triangles, usize::from(o.precision == "f32"), "{}", o.precision);
+    }
+    let notes = sweepslide::report::degenerate_notes(&runs);
+    assert_eq!(notes.len(), 1, "one line per scene and precision: {notes:?}");
+    assert!(notes[0].contains("in f32: 1 triangle(s) degenerate"), "{}", notes[0]);
+    let out = dir.join("report");
+    sweepslide::report::write_runs(&out, &runs).unwrap();
+    sweepslide::report::render(&out, &runs, None).unwrap();
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("in f32: 1 triangle(s) degenerate"), "the page says it");
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let mut lines = csv.lines();
+    let column = lines.next().unwrap().split(',').position(|h| h == "degenerate_triangles").expect("a CSV column");
+    // The last column: no quoted field with a comma sits before it here.
+    let counts: Vec<&str> = lines.map(|l| l.split(',').nth(column).unwrap()).collect();
+    assert!(counts.contains(&"1") && counts.contains(&"0"), "{counts:?}");
+    // `sweepslide merge` reads it back and says it on standard error.
+    let merged = dir.join("merged");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_sweepslide"))
+        .args(["merge", merged.to_str().unwrap(), out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("note: collapsing in f32: 1 triangle(s)"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -352,11 +352,11 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
     if let Some(path) = &args.trace {
         write_trace(path, &out)?;
     }
-    if out.degenerate_triangles > 0 {
+    if out.result.degenerate_triangles > 0 {
         eprintln!(
             "note: {} triangle(s) of the scene are degenerate in {} (zero area once rounded): they collided as the \
              segments or points they became",
-            out.degenerate_triangles, args.precision
+            out.result.degenerate_triangles, args.precision
         );
     }
     let r = &out.result;
@@ -481,12 +481,16 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Says on standard error how many runs of a report failed and why (the
-/// first five, with their scene, response and precision); the report lists
-/// them too.
+/// Says on standard error which scenes met triangles degenerate in a run's
+/// precision, and how many runs of a report failed and why (the first
+/// five, with their scene, response and precision); the report lists them
+/// too.
 fn warn_failed(runs: &sweepslide::report::Runs) {
     use sweepslide::report::matrix::SceneSource;
     let failed: Vec<_> = runs.records.iter().filter_map(|r| r.outcome.as_ref().err().map(|e| (&r.entry, e))).collect();
+    for note in sweepslide::report::degenerate_notes(runs) {
+        eprintln!("note: {note}");
+    }
     if failed.is_empty() {
         return;
     }

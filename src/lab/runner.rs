@@ -160,6 +160,12 @@ pub struct RunResult {
     pub snag: Option<f64>,
     /// Mean wall-clock nanoseconds per `move_body` call.
     pub ns_per_move: f64,
+    /// Triangles of the scene degenerate once rounded into the run's
+    /// precision ([`World::degenerate_in_backend`]): they collided as the
+    /// segments or points they became, not as the triangles the scene gave
+    /// (zero in `runs.json` files written before the count existed).
+    #[serde(default)]
+    pub degenerate_triangles: usize,
 }
 
 impl RunResult {
@@ -213,10 +219,6 @@ pub struct RunOutput {
     pub result: RunResult,
     /// One record per frame.
     pub frames: Vec<FrameRecord>,
-    /// Triangles of the scene degenerate once rounded into the run's
-    /// precision ([`World::degenerate_in_backend`]): they collided as the
-    /// segments or points they became.
-    pub degenerate_triangles: usize,
 }
 
 /// The contact decisions of a move: triangle and feature of each contact.
@@ -432,8 +434,9 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         final_position: [0, 1, 2].map(|i| p[i].to_f64()),
         snag: scene.ideal.and_then(|ideal| snag_ratio(&start, &p, ideal, frames)),
         ns_per_move: ns as f64 / moves.max(1) as f64,
+        degenerate_triangles: world.degenerate_in_backend(),
     };
-    Ok(RunOutput { result, frames: records, degenerate_triangles: world.degenerate_in_backend() })
+    Ok(RunOutput { result, frames: records })
 }
 
 /// The most frames one run plays (every frame's position and record is

@@ -119,6 +119,9 @@ pub fn page(runs: &Runs, figures: &[Figure], elapsed_s: Option<f64>) -> String {
     if !failed.is_empty() {
         let _ = writeln!(out, "<p class=bad>{} runs failed: {}</p>", failed.len(), html_escape(&failed.join("; ")));
     }
+    for note in super::degenerate_notes(runs) {
+        let _ = writeln!(out, "<p class=bad>{}</p>", html_escape(&note));
+    }
     out.push_str("<h2>Summary</h2><p>Aggregates over every scene of the main table, worst or total per response and precision. Penetration is in world units for a sphere and in radii for an ellipsoid (the <code>room</code> scene and some fuzz cases). For Fauerby's detection (kept by Linahan's response), which is one-sided by design, it leaves out the frames that end inside only triangles they entered from behind (the body's centre behind each one's plane at the start of the frame it entered it); the next column counts every frame. Jitter counts the constant-push scenes only (a steered path bends, which the formula also scores). Time is the median of the runs' mean time per move.</p>\n");
     out.push_str("<table><tr><th class=l>response</th><th class=l>precision</th><th>worst penetration</th><th>penetrating frames</th><th>incl. entered from behind</th><th>worst jitter</th><th>max checks/frame</th><th>NaN frames</th><th>decision flips</th><th>plane flips</th><th>worst snag ratio</th><th>ns/move</th></tr>\n");
     for resp in ["fauerby", "linahan", "robust"] {

@@ -130,6 +130,26 @@ pub fn merge(shards: Vec<Runs>) -> Result<Runs, Error> {
     Ok(Runs { info, records })
 }
 
+/// One line per scene and precision whose runs met triangles degenerate
+/// once rounded into that precision ([`RunResult::degenerate_triangles`]),
+/// in the order of the runs: those triangles collided as the segments or
+/// points they became, which the report and the command line both say.
+#[must_use]
+pub fn degenerate_notes(runs: &Runs) -> Vec<String> {
+    let mut notes: Vec<String> = Vec::new();
+    for r in runs.records.iter().filter_map(|r| r.outcome.as_ref().ok()).filter(|r| r.degenerate_triangles > 0) {
+        let note = format!(
+            "{} in {}: {} triangle(s) degenerate once rounded into this precision (zero area), which collided as the \
+             segments or points they became",
+            r.scene, r.precision, r.degenerate_triangles
+        );
+        if !notes.contains(&note) {
+            notes.push(note);
+        }
+    }
+    notes
+}
+
 /// One line of `results.json`: the run's metrics (the `sweepslide run
 /// --json` fields) plus where it sits in the matrix.
 #[derive(Serialize)]
@@ -171,7 +191,7 @@ pub fn render(dir: &Path, runs: &Runs, elapsed_s: Option<f64>) -> Result<Vec<Pat
 
 fn csv(lines: &[ResultLine<'_>]) -> String {
     let mut out = String::from(
-        "index,group,scene,response,detection,precision,seed,frames,max_penetration,penetrating_frames,back_face_frames,max_front_penetration,jitter,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,decision_flips,plane_flips,snag,final_x,final_y,final_z,ns_per_move\n",
+        "index,group,scene,response,detection,precision,seed,frames,max_penetration,penetrating_frames,back_face_frames,max_front_penetration,jitter,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,decision_flips,plane_flips,snag,final_x,final_y,final_z,ns_per_move,degenerate_triangles\n",
     );
     for l in lines {
         let r = l.result;
@@ -182,7 +202,7 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
         let snag = r.snag.map_or(String::new(), |s| format!("{s:e}"));
         let [x, y, z] = r.final_position;
         out += &format!(
-            "{},{group},\"{}\",{},{},{},{},{},{:e},{},{},{:e},{:e},{},{},{},{},{},{},{},{snag},{x:e},{y:e},{z:e},{:.1}\n",
+            "{},{group},\"{}\",{},{},{},{},{},{:e},{},{},{:e},{:e},{},{},{},{},{},{},{},{snag},{x:e},{y:e},{z:e},{:.1},{}\n",
             l.index,
             // A quoted CSV field doubles its quotes (a mesh's file name may
             // hold one).
@@ -204,7 +224,8 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
             r.nan_frames,
             r.decision_flips,
             r.plane_flips,
-            r.ns_per_move
+            r.ns_per_move,
+            r.degenerate_triangles
         );
     }
     out
