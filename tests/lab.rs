@@ -349,6 +349,13 @@ fn unknown_names_and_bad_numbers_exit_with_code_2() {
         assert_eq!(code, Some(expected), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
         assert!(!out.stderr.is_empty(), "{args:?} explains itself");
     }
+    // No scene, or two: the message names every way to give one.
+    for args in [vec!["run"], vec!["run", "--scene", "floor", "--case", "x.json"]] {
+        let out = sweepslide(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(["--scene", "--mesh", "--case"].iter().all(|a| stderr.contains(a)), "{args:?}: {stderr}");
+    }
 }
 
 #[test]

@@ -95,12 +95,14 @@ enum DetectionArg {
 }
 
 #[derive(clap::Args)]
+// Exactly one scene source; a missing one is named with all three.
+#[command(group(clap::ArgGroup::new("source").required(true).args(["scene", "mesh", "case"])))]
 struct RunArgs {
     /// Built-in scene, `name` or `name:parameter` (see `sweepslide scenes`).
-    #[arg(long, conflicts_with_all = ["mesh", "case"], required_unless_present_any = ["mesh", "case"])]
+    #[arg(long)]
     scene: Option<String>,
     /// A Wavefront OBJ file to use as the scene.
-    #[arg(long, conflicts_with = "case")]
+    #[arg(long)]
     mesh: Option<PathBuf>,
     /// A fuzz case or finding (.json, as the fuzz targets write them) to use as the scene.
     #[arg(long)]
