@@ -637,6 +637,44 @@ fn obj_degenerate_face_is_skipped_with_its_line() {
     }
 }
 
+/// A mesh moved far from the origin (`sweepslide run --offset`) names the
+/// OBJ lines of the triangles the move collapses, and keeps naming the
+/// right ones after earlier faces were skipped (left alone in the
+/// twenty-first session: they were named by their index among the kept
+/// triangles, which no file shows).
+#[test]
+fn a_moved_obj_mesh_names_the_lines_of_the_triangles_it_collapses() {
+    // Line 1 a comment, a degenerate face on line 7 (skipped on loading),
+    // a large triangle on line 8, one thin along x (1e-3) on line 9 and one
+    // thin along y on line 10.
+    let text =
+        "# big and thin\nv 0 0 0\nv 100 0 0\nv 0 0 100\nv 0.001 0 0\nv 0 0.001 0\nf 1 1 2\nf 1 3 2\nf 1 3 4\nf 1 2 5\n";
+    let mesh = TriangleMesh::from_obj_str(text, Path::new("x.obj")).unwrap();
+    assert_eq!(mesh.len(), 3);
+    let line_of = |m: &TriangleMesh| match &m.skipped()[..] {
+        [Error::Obj { path, line, message }] => {
+            assert_eq!(path, Path::new("x.obj"));
+            assert!(message.contains("degenerate"), "{message}");
+            *line
+        }
+        other => panic!("expected one Error::Obj, got {other:?}"),
+    };
+    // At 1e14 a coordinate is rounded to 1/64: moved along x, the triangle
+    // thin along x collapses, the others keep their shape.
+    let moved = mesh.moved(|v| [v.x + 1e14, v.y, v.z]).unwrap();
+    assert_eq!(moved.len(), 2);
+    assert_eq!(line_of(&moved), 9, "only what the move collapsed, by its line");
+    // Moved again along y, the line still follows the triangle (index 1
+    // among the two kept, 2 among the file's valid faces).
+    let twice = moved.moved(|v| [v.x, v.y + 1e14, v.z]).unwrap();
+    assert_eq!((twice.len(), line_of(&twice)), (1, 10));
+    // A mesh not read from OBJ names the triangle by its index.
+    let plain = TriangleMesh::new(mesh.vertices().iter().map(|v| [v.x, v.y, v.z]).collect(), mesh.triangles().to_vec())
+        .unwrap();
+    let moved = plain.moved(|v| [v.x + 1e14, v.y, v.z]).unwrap();
+    assert!(matches!(&moved.skipped()[0], Error::DegenerateTriangle { index: 1, .. }), "{:?}", moved.skipped());
+}
+
 // ---------------------------------------------------------------------------
 // Scene::from_case_file (fuzz cases as lab scenes)
 // ---------------------------------------------------------------------------

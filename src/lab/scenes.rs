@@ -610,8 +610,7 @@ impl Scene {
         }
         let o = Vector3::from(offset);
         let round = |v: [f64; 3]| if round_to_f32 { q3(v) } else { v };
-        let vertices: Vec<[f64; 3]> = self.mesh.vertices().iter().map(|v| round((v + o).into())).collect();
-        let mesh = Arc::new(TriangleMesh::new_skipping_invalid(vertices, self.mesh.triangles().to_vec())?);
+        let mesh = Arc::new(self.mesh.moved(|v| round((v + o).into()))?);
         Ok(Scene {
             name: format!("{}@{},{},{}", self.name, offset[0], offset[1], offset[2]),
             mesh,

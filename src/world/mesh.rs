@@ -5,7 +5,7 @@ use super::{Aabb, ActiveFeatures, Adjacency, Ball, Bvh};
 use crate::geom::{Triangle, Vec3, from_f64};
 use crate::{Error, Real};
 use nalgebra::Vector3;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// A validated, indexed triangle mesh in `f64` with adjacency and a BVH.
@@ -25,6 +25,18 @@ pub struct TriangleMesh {
     bounds: Aabb,
     skipped: Vec<Error>,
     ignored: Vec<Ignored>,
+    /// For a mesh read from OBJ text: the file, and each kept triangle's
+    /// line (so that a later [`TriangleMesh::moved`] names the lines of the
+    /// triangles it collapses).
+    source: Option<Source>,
+}
+
+/// Where a mesh's triangles came from: an OBJ file and, per triangle of the
+/// mesh, the line of its `f` statement.
+#[derive(Clone, Debug)]
+struct Source {
+    path: PathBuf,
+    lines: Vec<usize>,
 }
 
 /// Default largest angle between two triangles' normals for their shared
@@ -40,7 +52,7 @@ impl TriangleMesh {
     /// [`Error::DegenerateTriangle`] naming the first bad triangle, or
     /// [`Error::EmptyMesh`].
     pub fn new(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
-        let (mesh, mut skipped) = Self::build(vertices, triangles, |_, e| e);
+        let (mesh, mut skipped) = Self::build(vertices, triangles, None);
         match (mesh, skipped.is_empty()) {
             (Some(mesh), true) => Ok(mesh),
             (None, true) => Err(Error::EmptyMesh),
@@ -55,7 +67,25 @@ impl TriangleMesh {
     /// [`Error::EmptyMesh`] when no triangle is given,
     /// [`Error::NoValidTriangle`] when none is valid.
     pub fn new_skipping_invalid(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
-        let (mesh, skipped) = Self::build(vertices, triangles, |_, e| e);
+        let (mesh, skipped) = Self::build(vertices, triangles, None);
+        Self::with_skipped(mesh, skipped)
+    }
+
+    /// The same triangles over the vertices `at` maps each vertex to (a
+    /// scene moved far from the origin, say), validated again: a triangle
+    /// the new coordinates collapse (their rounding can merge a small
+    /// triangle's corners) is skipped and listed in
+    /// [`TriangleMesh::skipped`], by its OBJ line for a mesh read from OBJ
+    /// text, else by its index in this mesh. The new mesh lists only what
+    /// the move collapsed: neither this mesh's skipped triangles nor its
+    /// ignored OBJ statements.
+    ///
+    /// # Errors
+    /// [`Error::NoValidTriangle`] when every triangle collapses.
+    pub fn moved(&self, at: impl Fn(&Vector3<f64>) -> [f64; 3]) -> Result<Self, Error> {
+        let vertices = self.vertices.iter().map(at).collect();
+        let source = self.source.as_ref().map(|s| (s.path.as_path(), s.lines.as_slice()));
+        let (mesh, skipped) = Self::build(vertices, self.triangles.clone(), source);
         Self::with_skipped(mesh, skipped)
     }
 
@@ -107,27 +137,28 @@ impl TriangleMesh {
                 message: "end of file: no face (`f` statement), nothing to collide with".into(),
             });
         }
-        let lines = obj.lines;
-        let (mesh, skipped) = Self::build(obj.vertices, obj.triangles, |t, e| Error::Obj {
-            path: path.to_path_buf(),
-            line: lines[t],
-            message: e.to_string(),
-        });
+        let (mesh, skipped) = Self::build(obj.vertices, obj.triangles, Some((path, &obj.lines)));
         let mut mesh = Self::with_skipped(mesh, skipped)?;
         mesh.ignored = obj.ignored;
         Ok(mesh)
     }
 
-    /// Validates and indexes; invalid triangles go to the returned list
-    /// (mapped through `report`, which gets the input index). No mesh when
-    /// no triangle is valid.
+    /// Validates and indexes; invalid triangles go to the returned list,
+    /// by their index in `triangles`, or, given `source` (an OBJ file and
+    /// each input triangle's line), as [`Error::Obj`] with their line. No
+    /// mesh when no triangle is valid.
     fn build(
         vertices: Vec<[f64; 3]>,
         triangles: Vec<[u32; 3]>,
-        report: impl Fn(usize, Error) -> Error,
+        source: Option<(&Path, &[usize])>,
     ) -> (Option<Self>, Vec<Error>) {
+        let report = |t: usize, e: Error| match source {
+            Some((path, lines)) => Error::Obj { path: path.to_path_buf(), line: lines[t], message: e.to_string() },
+            None => e,
+        };
         let vertices: Vec<Vector3<f64>> = vertices.into_iter().map(Vector3::from).collect();
         let mut kept = Vec::with_capacity(triangles.len());
+        let mut kept_lines = Vec::new();
         let mut skipped = Vec::new();
         for (index, tri) in triangles.into_iter().enumerate() {
             let checked = tri
@@ -140,7 +171,10 @@ impl TriangleMesh {
                 })
                 .map_or_else(|| corners(&vertices, &tri).validate(index), Err);
             match checked {
-                Ok(()) => kept.push(tri),
+                Ok(()) => {
+                    kept.push(tri);
+                    kept_lines.extend(source.map(|(_, lines)| lines[index]));
+                }
                 Err(e) => skipped.push(report(index, e)),
             }
         }
@@ -168,6 +202,7 @@ impl TriangleMesh {
             bounds,
             skipped: Vec::new(),
             ignored: Vec::new(),
+            source: source.map(|(path, _)| Source { path: path.to_path_buf(), lines: kept_lines }),
         };
         (Some(mesh), skipped)
     }
