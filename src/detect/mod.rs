@@ -284,26 +284,52 @@ pub struct Reach<T: Real> {
 impl<T: Real> Reach<T> {
     /// The reach of a frame starting at `position` (world space) whose
     /// displacements (world space, slid or not) are `moves`: radius
-    /// [`REACH_MARGIN`] plus the sum of their eSpace lengths.
+    /// [`REACH_MARGIN`] plus the sum of their eSpace lengths, centred on
+    /// `position` itself (no rounding), the radius grown by `4 u` of
+    /// itself for its own rounding.
     #[must_use]
     pub fn of_frame(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>]) -> Self {
         let length = moves.iter().fold(T::zero(), |r, m| r + norm(&body.to_espace(m)));
         let radius = T::c(REACH_MARGIN) + length;
-        let grow = body.radii() * radius.clone();
-        Reach { min: position - &grow, max: position + grow, centre: position.clone(), radius }
+        let radius = radius.clone() + radius * T::c(4.0 * T::unit_roundoff());
+        Reach::around(body, position, &Vec3::zeros(), &radius.clone(), position.clone(), radius)
     }
 
     /// The reach of one straight sweep from `position` by `velocity`: every
-    /// point within [`REACH_MARGIN`] (eSpace) of the segment.
+    /// point within [`REACH_MARGIN`] (eSpace) of the segment. The ball is
+    /// centred on the segment's midpoint, rounded in world coordinates: its
+    /// radius is grown by that rounding (`u` per coordinate of the
+    /// midpoint, in eSpace; a review found `f32` sweeps a million radii
+    /// from the origin missing the wall they end on, the rounding being
+    /// more than the margin).
     #[must_use]
     pub fn of_sweep(body: &Ellipsoid<T>, position: &Vec3<T>, velocity: &Vec3<T>) -> Self {
+        let half = velocity * T::c(0.5);
+        let centre = position + &half;
+        let u = T::unit_roundoff();
+        let half_e = norm(&body.to_espace(&half));
+        let off = max_abs(&body.to_espace(&centre), half_e.clone()) * T::c(4.0 * 3f64.sqrt() * u);
+        let radius = half_e + T::c(REACH_MARGIN);
+        let radius = radius.clone() + radius * T::c(4.0 * u) + off;
+        Reach::around(body, position, velocity, &T::c(REACH_MARGIN), centre, radius)
+    }
+
+    /// The reach with the box around the segment from `position` by
+    /// `velocity`, grown by `by` radii and by the rounding of its corners
+    /// (`4 u` times the magnitudes each corner sums, per axis, so a corner
+    /// computed in `T` never cuts into the margin: far from the origin half
+    /// an ulp of the position can exceed it).
+    fn around(body: &Ellipsoid<T>, position: &Vec3<T>, velocity: &Vec3<T>, by: &T, centre: Vec3<T>, radius: T) -> Self {
         let end = position + velocity;
-        let grow = body.radii() * T::c(REACH_MARGIN);
+        let margin = T::c(4.0 * T::unit_roundoff());
+        let grow = Vec3::from_fn(|i, _| {
+            let g = body.radii()[i].clone() * by;
+            let sum = position[i].clone().abs() + velocity[i].clone().abs() + &g;
+            g + margin.clone() * sum
+        });
         let min = Vec3::from_fn(|i, _| position[i].clone().min(end[i].clone()) - &grow[i]);
         let max = Vec3::from_fn(|i, _| position[i].clone().max(end[i].clone()) + &grow[i]);
-        let half = velocity * T::c(0.5);
-        let radius = norm(&body.to_espace(&half)) + T::c(REACH_MARGIN);
-        Reach { min, max, centre: position + half, radius }
+        Reach { min, max, centre, radius }
     }
 }
 

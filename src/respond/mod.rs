@@ -259,14 +259,19 @@ impl<T: Real> Frame<'_, T> {
         earliest_hit(self.detection, kept, base, vel, self.detect)
     }
 
-    /// Gathers the candidates again around eSpace position `p` (after a
-    /// push-out moved the body beyond the gathered box's margin).
+    /// Gathers the candidates again for eSpace position `p` (after a
+    /// push-out moved the body beyond the gathered box's margin): all
+    /// within the frame's reach of `p`, found as those within that reach
+    /// plus `|p|` of the frame's start. The start is the neighbourhood's
+    /// origin, held exactly, where `p` in world coordinates would be
+    /// rounded, far from the origin by more than the reach's margin (a
+    /// review).
     ///
     /// # Errors
     /// As [`Neighbourhood::gather`].
     pub fn regather(&mut self, p: &Vec3<T>) -> Result<(), Error> {
-        let at = self.body.from_espace(p) + &self.hood.origin;
-        let reach = Reach::of_frame(self.body, &at, &[&self.moves[0], &self.moves[1]]);
+        let pushed = self.body.from_espace(p);
+        let reach = Reach::of_frame(self.body, &self.hood.origin, &[&self.moves[0], &self.moves[1], &pushed]);
         self.hood.gather(self.world, self.body, &reach)
     }
 

@@ -490,7 +490,12 @@ impl<T: Real> World<T> {
             let centre = Vector3::from_fn(|i, _| centre[i].to_f64());
             let scale = Vector3::from_fn(|i, _| 1.0 / radii[i].to_f64());
             let off = self.slack + centre.amax() * f64::EPSILON;
-            Ball { centre, scale, radius: radius.to_f64() + off * scale.norm() }
+            // `sqrt(3)` times the largest scale bounds the scale vector's
+            // length without squaring it: a radius below about `1e-154`
+            // overflowed the norm, and `0 * inf` made the ball NaN and
+            // empty (a review). Zero `off` adds nothing.
+            let widen = if off > 0.0 { off * (scale.amax() * 3f64.sqrt()) } else { 0.0 };
+            Ball { centre, scale, radius: radius.to_f64() + widen }
         });
         self.mesh.bvh.query(&bounds, ball.as_ref(), visit);
     }

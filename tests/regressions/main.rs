@@ -13,3 +13,4 @@ mod respond_embedded;
 mod respond_far_origin;
 mod respond_huge_wall_slots;
 mod respond_parallel_planes;
+mod world_reach;
