@@ -668,11 +668,39 @@ fn a_moved_obj_mesh_names_the_lines_of_the_triangles_it_collapses() {
     // among the two kept, 2 among the file's valid faces).
     let twice = moved.moved(|v| [v.x, v.y + 1e14, v.z]).unwrap();
     assert_eq!((twice.len(), line_of(&twice)), (1, 10));
+    // Each kept triangle maps back to the file's faces (0 degenerate, then
+    // the big one, the one thin along x, the one thin along y).
+    assert_eq!((0..3).map(|t| mesh.input_index(t)).collect::<Vec<_>>(), [1, 2, 3]);
+    assert_eq!((twice.input_index(0), moved.input_index(1)), (1, 3));
     // A mesh not read from OBJ names the triangle by its index.
     let plain = TriangleMesh::new(mesh.vertices().iter().map(|v| [v.x, v.y, v.z]).collect(), mesh.triangles().to_vec())
         .unwrap();
     let moved = plain.moved(|v| [v.x + 1e14, v.y, v.z]).unwrap();
     assert!(matches!(&moved.skipped()[0], Error::DegenerateTriangle { index: 1, .. }), "{:?}", moved.skipped());
+}
+
+/// A review (twenty-second session): skipping a triangle renumbered the
+/// kept ones with no way back to the input's numbering (per-triangle user
+/// data went to the wrong triangle), and a moved mesh lost its
+/// internal-edge angle.
+#[test]
+fn kept_triangles_map_back_to_the_input_and_a_move_keeps_the_edge_angle() {
+    // Input 0 collinear (skipped), 1 a floor, 2 a ceiling.
+    let vertices = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]];
+    let mesh = TriangleMesh::new_skipping_invalid(vertices, vec![[0, 1, 2], [0, 1, 4], [0, 3, 1]]).unwrap();
+    assert!(matches!(mesh.skipped(), [Error::DegenerateTriangle { index: 0, .. }]), "{:?}", mesh.skipped());
+    assert_eq!((mesh.len(), mesh.input_index(0), mesh.input_index(1)), (2, 1, 2));
+    // A fold of 20 degrees: internal under a 30 degree threshold, moved or not.
+    let (s, c) = 20f64.to_radians().sin_cos();
+    let fold = TriangleMesh::new(
+        vec![[0.0, -1.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [c, 0.0, -s]],
+        vec![[0, 1, 2], [1, 0, 3]],
+    )
+    .unwrap();
+    assert!(fold.active(0).edge(0), "a 20 degree fold is a real edge by default");
+    let wide = fold.with_internal_edge_angle(30.0).unwrap();
+    assert!(!wide.active(0).edge(0));
+    assert!(!wide.moved(|v| [v.x + 10.0, v.y, v.z]).unwrap().active(0).edge(0), "the move keeps the threshold");
 }
 
 // ---------------------------------------------------------------------------

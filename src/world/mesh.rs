@@ -14,7 +14,9 @@ use std::sync::Arc;
 /// ([`Triangle::validate`]). Invalid input triangles are either an error
 /// ([`TriangleMesh::new`]) or skipped and listed in
 /// [`TriangleMesh::skipped`] ([`TriangleMesh::new_skipping_invalid`] and the
-/// OBJ loaders), never dropped silently.
+/// OBJ loaders), never dropped silently; the kept ones are numbered afresh,
+/// and [`TriangleMesh::input_index`] maps a kept triangle (a hit's
+/// `triangle`, say) back to the input's numbering.
 #[derive(Clone, Debug)]
 pub struct TriangleMesh {
     vertices: Vec<Vector3<f64>>,
@@ -25,15 +27,21 @@ pub struct TriangleMesh {
     bounds: Aabb,
     skipped: Vec<Error>,
     ignored: Vec<Ignored>,
-    /// For a mesh read from OBJ text: the file, and each kept triangle's
-    /// line (so that a later [`TriangleMesh::moved`] names the lines of the
-    /// triangles it collapses).
-    source: Option<Source>,
+    /// Each triangle's index in the input it was built from
+    /// ([`TriangleMesh::input_index`]).
+    inputs: Vec<u32>,
+    /// For a mesh read from OBJ text: the file, and the line of each input
+    /// triangle (so that a later [`TriangleMesh::moved`] names the lines of
+    /// the triangles it collapses).
+    source: Option<Arc<Source>>,
+    /// The cosine of the internal-edge angle its active features were
+    /// classified with ([`TriangleMesh::with_internal_edge_angle`]).
+    internal_cos: f64,
 }
 
-/// Where a mesh's triangles came from: an OBJ file and, per triangle of the
-/// mesh, the line of its `f` statement.
-#[derive(Clone, Debug)]
+/// Where a mesh's triangles came from: an OBJ file and, per input
+/// triangle, the line of its `f` statement.
+#[derive(Debug)]
 struct Source {
     path: PathBuf,
     lines: Vec<usize>,
@@ -52,7 +60,7 @@ impl TriangleMesh {
     /// [`Error::DegenerateTriangle`] naming the first bad triangle, or
     /// [`Error::EmptyMesh`].
     pub fn new(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
-        let (mesh, mut skipped) = Self::build(vertices, triangles, None);
+        let (mesh, mut skipped) = Self::build(vertices, triangles, None, None, Self::default_internal_cos());
         match (mesh, skipped.is_empty()) {
             (Some(mesh), true) => Ok(mesh),
             (None, true) => Err(Error::EmptyMesh),
@@ -67,8 +75,12 @@ impl TriangleMesh {
     /// [`Error::EmptyMesh`] when no triangle is given,
     /// [`Error::NoValidTriangle`] when none is valid.
     pub fn new_skipping_invalid(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Result<Self, Error> {
-        let (mesh, skipped) = Self::build(vertices, triangles, None);
+        let (mesh, skipped) = Self::build(vertices, triangles, None, None, Self::default_internal_cos());
         Self::with_skipped(mesh, skipped)
+    }
+
+    fn default_internal_cos() -> f64 {
+        INTERNAL_EDGE_DEGREES.to_radians().cos()
     }
 
     /// The same triangles over the vertices `at` maps each vertex to (a
@@ -76,16 +88,19 @@ impl TriangleMesh {
     /// the new coordinates collapse (their rounding can merge a small
     /// triangle's corners) is skipped and listed in
     /// [`TriangleMesh::skipped`], by its OBJ line for a mesh read from OBJ
-    /// text, else by its index in this mesh. The new mesh lists only what
-    /// the move collapsed: neither this mesh's skipped triangles nor its
-    /// ignored OBJ statements.
+    /// text, else by its index in the original input
+    /// ([`TriangleMesh::input_index`], which the new mesh keeps too). The
+    /// new mesh lists only what the move collapsed: neither this mesh's
+    /// skipped triangles nor its ignored OBJ statements. Its internal edges
+    /// follow this mesh's angle threshold.
     ///
     /// # Errors
     /// [`Error::NoValidTriangle`] when every triangle collapses.
     pub fn moved(&self, at: impl Fn(&Vector3<f64>) -> [f64; 3]) -> Result<Self, Error> {
         let vertices = self.vertices.iter().map(at).collect();
-        let source = self.source.as_ref().map(|s| (s.path.as_path(), s.lines.as_slice()));
-        let (mesh, skipped) = Self::build(vertices, self.triangles.clone(), source);
+        let inputs = Some(self.inputs.clone());
+        let (mesh, skipped) =
+            Self::build(vertices, self.triangles.clone(), inputs, self.source.clone(), self.internal_cos);
         Self::with_skipped(mesh, skipped)
     }
 
@@ -137,30 +152,36 @@ impl TriangleMesh {
                 message: "end of file: no face (`f` statement), nothing to collide with".into(),
             });
         }
-        let (mesh, skipped) = Self::build(obj.vertices, obj.triangles, Some((path, &obj.lines)));
+        let source = Arc::new(Source { path: path.to_path_buf(), lines: obj.lines });
+        let (mesh, skipped) =
+            Self::build(obj.vertices, obj.triangles, None, Some(source), Self::default_internal_cos());
         let mut mesh = Self::with_skipped(mesh, skipped)?;
         mesh.ignored = obj.ignored;
         Ok(mesh)
     }
 
     /// Validates and indexes; invalid triangles go to the returned list,
-    /// by their index in `triangles`, or, given `source` (an OBJ file and
-    /// each input triangle's line), as [`Error::Obj`] with their line. No
-    /// mesh when no triangle is valid.
+    /// by their input index (`inputs[k]` for `triangles[k]`, or `k`
+    /// itself without `inputs`), or, given `source` (an OBJ file and each
+    /// input triangle's line), as [`Error::Obj`] with their line. No mesh
+    /// when no triangle is valid.
     fn build(
         vertices: Vec<[f64; 3]>,
         triangles: Vec<[u32; 3]>,
-        source: Option<(&Path, &[usize])>,
+        inputs: Option<Vec<u32>>,
+        source: Option<Arc<Source>>,
+        internal_cos: f64,
     ) -> (Option<Self>, Vec<Error>) {
-        let report = |t: usize, e: Error| match source {
-            Some((path, lines)) => Error::Obj { path: path.to_path_buf(), line: lines[t], message: e.to_string() },
+        let report = |index: usize, e: Error| match &source {
+            Some(s) => Error::Obj { path: s.path.clone(), line: s.lines[index], message: e.to_string() },
             None => e,
         };
         let vertices: Vec<Vector3<f64>> = vertices.into_iter().map(Vector3::from).collect();
         let mut kept = Vec::with_capacity(triangles.len());
-        let mut kept_lines = Vec::new();
+        let mut kept_inputs = Vec::with_capacity(triangles.len());
         let mut skipped = Vec::new();
-        for (index, tri) in triangles.into_iter().enumerate() {
+        for (k, tri) in triangles.into_iter().enumerate() {
+            let index = inputs.as_ref().map_or(k, |i| i[k] as usize);
             let checked = tri
                 .iter()
                 .find(|&&v| v as usize >= vertices.len())
@@ -173,7 +194,8 @@ impl TriangleMesh {
             match checked {
                 Ok(()) => {
                     kept.push(tri);
-                    kept_lines.extend(source.map(|(_, lines)| lines[index]));
+                    // Input counts fit `u32`, like the vertex indices.
+                    kept_inputs.push(index as u32);
                 }
                 Err(e) => skipped.push(report(index, e)),
             }
@@ -192,7 +214,7 @@ impl TriangleMesh {
         let mut bounds = Aabb::empty();
         boxes.iter().for_each(|b| bounds.merge(b));
         let adjacency = Adjacency::build(&vertices, &kept);
-        let active = adjacency.active_features(&vertices, &kept, INTERNAL_EDGE_DEGREES.to_radians().cos());
+        let active = adjacency.active_features(&vertices, &kept, internal_cos);
         let mesh = TriangleMesh {
             adjacency,
             active,
@@ -202,7 +224,9 @@ impl TriangleMesh {
             bounds,
             skipped: Vec::new(),
             ignored: Vec::new(),
-            source: source.map(|(path, _)| Source { path: path.to_path_buf(), lines: kept_lines }),
+            inputs: kept_inputs,
+            source,
+            internal_cos,
         };
         (Some(mesh), skipped)
     }
@@ -271,7 +295,8 @@ impl TriangleMesh {
                 message: format!("must lie in [0, 180] degrees, got {}", crate::error::Num(degrees)),
             });
         }
-        self.active = self.adjacency.active_features(&self.vertices, &self.triangles, degrees.to_radians().cos());
+        self.internal_cos = degrees.to_radians().cos();
+        self.active = self.adjacency.active_features(&self.vertices, &self.triangles, self.internal_cos);
         Ok(self)
     }
 
@@ -287,7 +312,25 @@ impl TriangleMesh {
         &self.bounds
     }
 
-    /// The input triangles that were left out, each with the reason.
+    /// The index of triangle `t` in the input the mesh was built from: the
+    /// `triangles` given to [`TriangleMesh::new`] or
+    /// [`TriangleMesh::new_skipping_invalid`], or an OBJ file's faces in
+    /// order (a polygon counting one per triangle of its fan), the numbering
+    /// [`TriangleMesh::skipped`] uses. The mesh numbers only the triangles it
+    /// kept, so hits, [`TriangleMesh::triangle`] and
+    /// [`TriangleMesh::active`] differ from the input's numbering from the
+    /// first skipped triangle on; this maps them back (a moved mesh,
+    /// [`TriangleMesh::moved`], keeps the original input's numbering).
+    ///
+    /// # Panics
+    /// If `t` is not below the mesh's [`TriangleMesh::len`].
+    #[must_use]
+    pub fn input_index(&self, t: u32) -> usize {
+        self.inputs[t as usize] as usize
+    }
+
+    /// The input triangles that were left out, each with the reason, by
+    /// their index in the input ([`TriangleMesh::input_index`]).
     #[must_use]
     pub fn skipped(&self) -> &[Error] {
         &self.skipped
