@@ -528,6 +528,12 @@ fn obj_concave_polygon_whose_fan_folds_is_refused() {
             .collect();
         obj_error(&format!("{arrow}f 2 3 4 1\n"), 5, "concave");
     }
+    // A bowtie whose two halves cancel exactly (a review: no polygon
+    // normal was left to judge them by, and it was kept), and a lopsided
+    // one.
+    for top in ["1", "1.5"] {
+        obj_error(&format!("v 0 0 0\nv 1 1 0\nv 1 0 0\nv 0 {top} 0\nf 1 2 3 4\n"), 5, "concave");
+    }
     // A warped quad.
     let warped = "v 0 0 0\nv 1 0 0.2\nv 1 1 0\nv 0 1 0.2\nf 1 2 3 4\n";
     assert_eq!(TriangleMesh::from_obj_str(warped, Path::new("x.obj")).unwrap().len(), 2);

@@ -208,7 +208,8 @@ impl Reader {
 
 /// For a polygon of more than three corners, the first triangle `k`
 /// (counted from one) of its fan around corner 0 whose area vector points against the
-/// polygon's (the sum of the fan's, Newell's normal): the fan then covers
+/// polygon's (the sum of the fan's, Newell's normal; where that sum is
+/// rounding noise, the fan's largest triangle's): the fan then covers
 /// some area twice and area outside the polygon. `None` for a fan whose
 /// triangles all face the same side (a convex polygon, or one star-shaped
 /// around its first corner, planar or not).
@@ -236,8 +237,17 @@ fn folded_fan(vertices: &[[f64; 3]], corners: &[u32]) -> Option<usize> {
         })
         .collect();
     let total: nalgebra::Vector3<f64> = fan.iter().map(|(a, _)| a).sum();
-    let length = total.norm();
-    fan.iter().position(|(a, noise)| a.dot(&total) < -noise * length).map(|k| k + 1)
+    // Triangles that cancel (a bowtie's two halves) leave no polygon
+    // normal: the largest triangle's direction judges the others then (a
+    // review found an exactly symmetric bowtie accepted).
+    let noise: f64 = fan.iter().map(|(_, n)| n).sum();
+    let reference = if total.norm() > noise {
+        total
+    } else {
+        fan.iter().map(|(a, _)| *a).max_by(|a, b| a.norm().total_cmp(&b.norm())).unwrap_or(total)
+    };
+    let length = reference.norm();
+    fan.iter().position(|(a, noise)| a.dot(&reference) < -noise * length).map(|k| k + 1)
 }
 
 /// Resolves one face corner (`v`, `v/vt`, `v//vn`, `v/vt/vn`) to a 0-based
