@@ -108,9 +108,9 @@ impl Adjacency {
     /// The active features of every triangle. Edge `i` of `t` is inactive
     /// when exactly one other triangle shares it and the two are nearly
     /// coplanar (the cosine between their consistently oriented normals is at
-    /// least `cos_min`) or the edge is concave seen from the front face (the
-    /// neighbour rises on that side; a sphere touching such an edge touches
-    /// the neighbouring face too). A vertex is inactive when every triangle
+    /// least `cos_min`); a sharper fold is active, whichever side it is
+    /// concave from (the triangles are solid on both sides, and a concave
+    /// edge is a ridge from behind). A vertex is inactive when every triangle
     /// around it is nearly coplanar with `t` (`|cos| >= cos_min`) and every
     /// edge at it, of every triangle around it, is inactive: a vertex that
     /// ends a border of the surface, or a fold, is a real corner even where
@@ -166,29 +166,13 @@ impl Adjacency {
                     let (p, q) = (w[e], w[(e + 1) % 3]);
                     let same_way = (0..3).any(|k| wn[k] == p && wn[(k + 1) % 3] == q);
                     let m = if same_way { -normal(nb as usize) } else { normal(nb as usize) };
-                    // Concave: the neighbour's far corner (the one off the
-                    // shared edge) rises above this triangle's plane by
-                    // more than `64 eps` of its distance from the edge's
-                    // start. Relative, so every scale the mesh accepts
-                    // decides alike: the threshold was `1e-9` times one
-                    // vertex's distance but at least `1e-9`, which
-                    // depended on the vertex order and, below sides of
-                    // `1e-9`, called no fold concave (a review). The
-                    // shared edge's own ends are left out: their height is
-                    // rounding only, but that of a sliver's normal tilted
-                    // by `eps / sin` of its angle, which called sharp
-                    // convex edges beside slivers concave (a review of the
-                    // first version). Only a fold beyond the
-                    // internal-edge angle depends on this: a sheet folded
-                    // back onto itself is concave from the side its far
-                    // corner rises towards, down to about `1e-13` radians
-                    // from closed (F20's was `5.8e-14` of its extent).
-                    let a = vertices[triangles[t][e] as usize];
-                    let far = (0..3)
-                        .find(|&k| wn[k] != p && wn[k] != q)
-                        .map(|k| vertices[triangles[nb as usize][k] as usize] - a);
-                    let concave = far.is_some_and(|d| n.dot(&d) > 64.0 * f64::EPSILON * d.amax());
-                    if !(n.dot(&m) >= cos_min || concave) {
+                    // A fold beyond the angle is a real edge, convex or
+                    // concave: seen from the front a sphere meets a concave
+                    // edge only through a face, but the triangles are solid
+                    // on both sides, and from the back the same edge is a
+                    // ridge (kept internal there, it gave the face normal
+                    // and stopped bodies on the ridge: a review).
+                    if !(n.dot(&m) >= cos_min) {
                         bits |= 1 << e;
                     }
                 }

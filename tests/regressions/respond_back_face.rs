@@ -122,3 +122,45 @@ fn faithful_responses_pass_through_back_faces_f32() {
 fn faithful_responses_pass_through_back_faces_f64() {
     faithful_pass_through::<f64>();
 }
+
+/// A plate bent down by 90 degrees (a ridge along y, top `z = 0` for
+/// `x < 0`, side `x = 0` below), wound either way. Wound inwards, the ridge
+/// is a concave edge seen from the triangles' fronts, and was internal: the
+/// body, arriving on the ridge from outside (the back) and pushed across
+/// it, took the face normal there and stopped at `(0.707, 0.707)` in every
+/// frame, where the outward-wound plate let it slide over (a review,
+/// twenty-second session). Both windings now slide over alike.
+#[test]
+fn a_body_slides_over_a_ridge_seen_from_behind() {
+    let corners = vec![
+        [-10.0, -10.0, 0.0],
+        [0.0, -10.0, 0.0],
+        [0.0, 10.0, 0.0],
+        [-10.0, 10.0, 0.0],
+        [0.0, -10.0, -10.0],
+        [0.0, 10.0, -10.0],
+    ];
+    let outward = vec![[0, 1, 2], [0, 2, 3], [1, 4, 5], [1, 5, 2]];
+    let inward: Vec<[u32; 3]> = outward.iter().map(|t| [t[0], t[2], t[1]]).collect();
+    let mut ends = Vec::new();
+    for triangles in [outward, inward] {
+        let mesh = std::sync::Arc::new(sweepslide::world::TriangleMesh::new(corners.clone(), triangles).unwrap());
+        let world = World::<f64>::new(mesh).unwrap();
+        let body = Ellipsoid::<f64>::sphere(1.0).unwrap();
+        let opts = MoveOptions::new(Response::Robust);
+        let mut p: Vec3<f64> = vec3(1.0, 0.0, 1.0);
+        for frame in 0..6 {
+            let vel = if frame == 0 { vec3(-0.5, 0.0, -0.5) } else { vec3(-0.5, 0.0, 0.0) };
+            p = move_body(&world, &body, &p, &vel, None, &opts).unwrap().position;
+            assert!(p.iter().all(|x| x.is_finite()), "frame {frame}: {p:?}");
+            // `None`: nothing within 1.05 radii (clear of the ridge).
+            let depth = penetration(&world, body.radii(), &p);
+            assert!(depth.is_none_or(|d| d <= 0.0), "frame {frame}: {depth:?} inside at {p:?}");
+        }
+        ends.push(f64s(&p));
+    }
+    // Over the ridge and along the top, at its height (about 1.05: pushed
+    // up the ridge's curve, it leaves it a little above its padding).
+    assert!(ends[1][0] < -1.0 && (1.0..1.1).contains(&ends[1][2]), "across the ridge and along the top: {:?}", ends[1]);
+    assert_eq!(ends[0], ends[1], "both windings alike");
+}
