@@ -10,7 +10,9 @@
 pub mod roots;
 pub mod sphere_triangle;
 
-pub use sphere_triangle::{Proximity, fauerby_point_in_triangle, proximity, sweep_fauerby, sweep_robust};
+pub use sphere_triangle::{
+    Proximity, closest_point, fauerby_point_in_triangle, proximity, sweep_fauerby, sweep_robust,
+};
 
 use sphere_triangle::{SweptBox, sweep_robust_with_speed};
 
@@ -180,6 +182,12 @@ pub struct Candidate<T: Real> {
     /// of order `u k` times the coordinates, so the rejections that use it
     /// widen their margin by `k`.
     pub shape: T,
+    /// Whether Ericson's closest point can carry a long lever near the
+    /// body: a sliver (`shape` above 4) or a triangle shorter than the
+    /// body's radius (every side below 1). Where it can, the robust
+    /// detection and response take the foot on the plane when the side
+    /// tests place it inside ([`crate::detect::closest_point`]).
+    pub long_lever: bool,
 }
 
 impl<T: Real> Candidate<T> {
@@ -219,7 +227,8 @@ impl<T: Real> Candidate<T> {
         // `linahan-nan-narrow-slot-diagonal` case, in `f32` and `Mpfr<24>`.)
         let normal = has_area.then(|| raw.map(|x| x / &area2));
         let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
-        Candidate { index, triangle, active, normal, lo, hi, edges, edge_sq, shape }
+        let long_lever = shape > T::c(4.0) || edge_sq.iter().all(|l| *l < T::one());
+        Candidate { index, triangle, active, normal, lo, hi, edges, edge_sq, shape, long_lever }
     }
 
     /// The tilt factor of [`Candidate::normal`]: `|e_i| |e_j| / |e_i x e_j|`

@@ -79,10 +79,8 @@
 //! `depenetration_rounds` rounds).
 
 use super::{Frame, StopReason};
-use crate::detect::{Candidate, DetectOptions, Detection, Hit, proximity};
-use crate::geom::{
-    Feature, Triangle, Vec3, closest_point_on_triangle, cross, dot, max_abs, norm, norm_squared, normalize,
-};
+use crate::detect::{Candidate, DetectOptions, Detection, Hit, closest_point, proximity};
+use crate::geom::{Feature, Triangle, Vec3, cross, dot, max_abs, norm, norm_squared, normalize};
 use crate::{Error, Real};
 use smallvec::SmallVec;
 use std::borrow::Cow;
@@ -708,7 +706,7 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
         if beyond(c, p, &reach, &reach_sq) {
             continue;
         }
-        let (point, _) = closest_point_on_triangle(p, &c.triangle);
+        let (point, _) = closest_point(c, p);
         // Squared, so that the square root is taken only within reach (the
         // cutoff moves by the rounding of `reach^2`, far inside the
         // `max_padding` of room it keeps beyond any resting contact).
@@ -802,9 +800,8 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
 fn overlaps<T: Real>(frame: &Frame<'_, T>, p: &Vec3<T>) -> bool {
     let one = T::one();
     frame.hood.triangles.iter().any(|c| {
-        let tri = &c.triangle;
         // A box or plane at distance 1 or more cannot hold an overlap.
-        !beyond(c, p, &one, &one) && norm_squared(&(p - closest_point_on_triangle(p, tri).0)) < one
+        !beyond(c, p, &one, &one) && norm_squared(&(p - closest_point(c, p).0)) < one
     })
 }
 
@@ -877,7 +874,7 @@ fn limits_at<T: Real>(
         if beyond(c, p, &reach, &(reach.clone() * &reach)) {
             continue;
         }
-        let (q, _) = closest_point_on_triangle(p, tri);
+        let (q, _) = closest_point(c, p);
         let dist = norm(&(p - &q));
         if !(dist < reach) {
             continue;
