@@ -1065,7 +1065,8 @@ pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions
 }
 
 /// The point of candidate `c` closest to `p`, and the feature it lies on:
-/// the foot of `p` on the plane where the side tests ([`side_outside`])
+/// the foot of `p` on the plane where the side tests (the orientations of
+/// the candidate's edges with the foot, seen along its normal)
 /// place it inside the triangle, else [`closest_point_on_triangle`].
 ///
 /// Rounded: the foot is `p` moved along the candidate's unit normal by the
