@@ -588,3 +588,40 @@ fn inactive_edge_contact_from_beside_keeps_its_own_direction() {
     inactive_edge_contact_from_beside::<f32>();
     inactive_edge_contact_from_beside::<f64>();
 }
+
+/// A review (twenty-second session): the robust test pruned a face contact
+/// by the best time so far at the plane's own time, before the touching
+/// window moved it earlier, so the earliest hit of two triangles depended
+/// on their order (in `f32` a grazing face contact at `t = 0.67917` was
+/// found only when its triangle came first, else an edge at `0.68246`).
+fn earliest_hit_ignores_order<T: Real>() {
+    let base = v::<T>([3761.621826171875, -2648.132568359375, 2014.713134765625]);
+    let vel = v::<T>([-58.73890686035156, -149.10035705566406, 170.57862854003906]);
+    let t0 = tri::<T>(
+        [3718.210693359375, -2750.545654296875, 2131.879150390625],
+        [3722.406005859375, -2750.545654296875, 2132.075439453125],
+        [3722.406005859375, -2750.545654296875, 2131.879150390625],
+    );
+    let t1 = tri::<T>(
+        [3719.66259765625, -2755.7998046875, 2133.80908203125],
+        [3723.233154296875, -2754.612060546875, 2124.146484375],
+        [3718.943603515625, -2745.503662109375, 2134.808837890625],
+    );
+    let (c0, c1) = (Candidate::lone(0, t0), Candidate::lone(1, t1));
+    let opts = DetectOptions::default();
+    let forward = sweepslide::detect::earliest_hit(Detection::Robust, [&c0, &c1], &base, &vel, &opts);
+    let backward = sweepslide::detect::earliest_hit(Detection::Robust, [&c1, &c0], &base, &vel, &opts);
+    assert_eq!(forward, backward, "{}", T::name());
+    // Each alone, pruned by a later limit, is found as without one.
+    for c in [&c0, &c1] {
+        let alone = sweepslide::detect::sweep_robust(c, &base, &vel, &opts, None);
+        let limited = sweepslide::detect::sweep_robust(c, &base, &vel, &opts, Some(&T::c(0.7)));
+        assert_eq!(alone, limited, "{} triangle {}", T::name(), c.index);
+    }
+}
+
+#[test]
+fn earliest_hit_does_not_depend_on_the_candidates_order() {
+    earliest_hit_ignores_order::<f32>();
+    earliest_hit_ignores_order::<f64>();
+}

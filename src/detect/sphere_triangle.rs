@@ -730,17 +730,23 @@ fn face_contact<T: Real>(
         return face_entered_touching(c, rel, n, plane_dist, base, vel, nv, touch_ulps, wins);
     }
     let t = (plane_dist.clone() - &one) / -nv.clone();
-    if !wins(&t) {
+    let contact = vel * t.clone() - n;
+    let tol = T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel);
+    // The window below can move the contact earlier by `tol / |nv|`: only a
+    // plane reached too late even then cannot win (judged at `t` itself,
+    // `limit` pruned grazing contacts the window would have moved ahead of
+    // it, and the earliest hit depended on the candidates' order: a review).
+    if !wins(&(t.clone() - tol.clone() / -nv.clone())) {
         return None;
     }
-    let contact = vel * t.clone() - n;
     // Orientation against the triangle's own winding normal (not the
     // side-flipped `n`), so back faces are found too.
     let winding = c.normal.as_ref().unwrap_or(n);
     let (t, contact) = match side_outside(c, rel, winding, &contact) {
-        None => (t, contact),
+        None if wins(&t) => (t, contact),
+        None => return None,
         Some(outside) => {
-            let window = Window { t, nv, tol: T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel) };
+            let window = Window { t, nv, tol };
             if window.rules_out(&outside, c, vel) {
                 return None;
             }
