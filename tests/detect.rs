@@ -625,3 +625,24 @@ fn earliest_hit_does_not_depend_on_the_candidates_order() {
     earliest_hit_ignores_order::<f32>();
     earliest_hit_ignores_order::<f64>();
 }
+
+/// `sweep_triangle` fuzzing of the change above (twenty-second session,
+/// `f32`): a sphere gliding past a small triangle's plane, 1.0007 from it
+/// and 5,000 radii away, reaches the plane only at `t = 1e9`; the widened
+/// pruning took the touching window of a contact that far along (its
+/// tolerance scales with the contact's size) and met the triangle at
+/// `t = 0`. A plane reached after the frame is refused first again.
+#[test]
+fn a_plane_reached_long_after_the_frame_is_not_met() {
+    let v = |p: [f64; 3]| vec3::<f32>(p[0], p[1], p[2]);
+    let tri = Triangle::new(
+        v([0.0, 0.009063420477210567, -0.07445034861740595]),
+        v([0.0, 0.18449226627697415, 0.10652845208773597]),
+        v([0.0, -0.5412808572530654, 0.3124740526369935]),
+    );
+    let c = Candidate::lone(0, tri);
+    let base = v([-1.0006643533709727, 0.050771486005617095, 4999.758683441579]);
+    let vel = v([6.123233995736766e-13, 2.4492935982947066e-12, -10000.0]);
+    let hit = sweepslide::detect::sweep_robust(&c, &base, &vel, &DetectOptions::default(), None);
+    assert!(hit.is_none(), "{hit:?}");
+}

@@ -730,12 +730,17 @@ fn face_contact<T: Real>(
         return face_entered_touching(c, rel, n, plane_dist, base, vel, nv, touch_ulps, wins);
     }
     let t = (plane_dist.clone() - &one) / -nv.clone();
+    // A plane reached after the frame is not met in it.
+    if !(t <= one) {
+        return None;
+    }
     let contact = vel * t.clone() - n;
     let tol = T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel);
     // The window below can move the contact earlier by `tol / |nv|`: only a
-    // plane reached too late even then cannot win (judged at `t` itself,
-    // `limit` pruned grazing contacts the window would have moved ahead of
-    // it, and the earliest hit depended on the candidates' order: a review).
+    // plane reached too late even then cannot beat `limit` (judged at `t`
+    // itself, `limit` pruned grazing contacts the window would have moved
+    // ahead of it, and the earliest hit depended on the candidates' order:
+    // a review).
     if !wins(&(t.clone() - tol.clone() / -nv.clone())) {
         return None;
     }
