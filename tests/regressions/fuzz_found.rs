@@ -200,9 +200,12 @@ fn huge_coordinates_never_give_a_negative_time() {
         &DetectOptions::default(),
     )
     .unwrap();
-    if let Some(h) = hit {
-        assert!((0.0..=1.0).contains(&h.t), "{h:?}");
-    }
+    // The sphere (radius 1000) meets the vertex `(1, 77777777777, 1)` after
+    // falling `2.2e7` of its `7.78e10` (a review found the check skipped
+    // on a miss).
+    let h = hit.expect("the vertex is met");
+    let expected = (7.78e10 - 77_777_777_777.0 - 1000.0) / 7.78e10;
+    assert!((h.t - expected).abs() < 1e-6 && h.feature == Feature::Vertex(2), "{h:?}, expected t = {expected:e}");
 }
 
 /// F8: a triangle of size 1e-4 about 5e4 radii from a fast body's start
