@@ -307,7 +307,9 @@ fn linahan_at_most_three_checks_per_pass<T: Real>() {
         let mut heavy = s.clone();
         heavy.gravity = [0.0, -0.05, 0.0];
         let r = simulate::<T>(&heavy, &MoveOptions::new(Response::Linahan), heavy.frames);
-        for (k, t) in r.traces.iter().enumerate().filter(|_| r.all_finite()) {
+        // Every frame, a NaN one too: the bound is the loop's, not the
+        // arithmetic's (a filter skipped them all if any frame was NaN).
+        for (k, t) in r.traces.iter().enumerate() {
             assert!(
                 t.pass_iterations <= 3,
                 "{} with gravity: frame {k}: {} checks in a pass",
