@@ -13,7 +13,10 @@ use nalgebra::Vector3;
 /// (a product is several times cheaper than a quotient, and a frame maps
 /// dozens of vertices): each coordinate carries a relative error of at most
 /// `2u` (the inverse's rounding and the product's), exact when the radii are
-/// powers of two.
+/// powers of two, for radii whose inverse is a normal number of `T`
+/// (below about `8.5e37` in `f32`, `4.5e307` in `f64`): a larger radius
+/// has a subnormal inverse, rounded more coarsely (about `3u` for an `f64`
+/// radius of `1.5e308`, a review found).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ellipsoid<T: Real> {
     radii: Vec3<T>,

@@ -99,7 +99,8 @@ impl Adjacency {
     /// edge is shared by exactly two triangles.
     ///
     /// # Panics
-    /// If `triangle` is not a triangle of the mesh or `edge` is above 2.
+    /// If `triangle` is not a triangle of the mesh. `edge` is taken modulo
+    /// 3, as [`ActiveFeatures::edge`] takes it.
     #[must_use]
     pub fn neighbour(&self, triangle: u32, edge: u8) -> Option<u32> {
         self.neighbours[triangle as usize][edge as usize % 3]

@@ -283,8 +283,11 @@ impl TriangleMesh {
 
     /// The mesh with its internal edges recomputed for another angle
     /// threshold (degrees, in `[0, 180]`; the default is
-    /// [`INTERNAL_EDGE_DEGREES`]). Zero makes only exactly coplanar and
-    /// concave edges internal.
+    /// [`INTERNAL_EDGE_DEGREES`]). Zero makes internal only the edges whose
+    /// two normals, as rounded, agree exactly: coplanar triangles whose
+    /// normals round differently (a review found 130 of 1,000 shared edges
+    /// of exactly coplanar integer quads) stay active; give a small angle to
+    /// merge coplanar triangles.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for an angle outside `[0, 180]` or NaN.
