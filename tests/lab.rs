@@ -512,9 +512,19 @@ fn resting_contacts_are_met_without_sweeps_and_as_the_sweeps_would() {
                 RunConfig { scene: scene.clone(), response: Response::Robust, detection: None, precision, seed: 1 };
             let r = run(&cfg).unwrap().result;
             assert_eq!((r.decision_flips, r.plane_flips, r.penetrating_frames), (0, 0, 0), "{name} {precision}");
-            if name == "floor" {
-                assert!(r.mean_iterations < 1.05, "floor {precision}: {} sweeps per move", r.mean_iterations);
-            }
+            // Sweeps per move: one on the floors (the velocity's; the
+            // gravity's is projected away by the floor it rests on), a few
+            // on the stairs (each pass at most two: the step's riser and
+            // nose), and almost none resting in the corner (the push is
+            // blocked by the two planes it rests on; a review found only the
+            // floor checked).
+            let (most, at_most_per_pass) = match name {
+                "floor" | "tessellated-floor" => (1.05, 2),
+                "staircase" => (3.5, 2),
+                _ => (0.5, 2),
+            };
+            assert!(r.mean_iterations < most, "{name} {precision}: {} sweeps per move", r.mean_iterations);
+            assert!(r.max_pass_iterations <= at_most_per_pass, "{name} {precision}: {}", r.max_pass_iterations);
         }
     }
 }

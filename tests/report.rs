@@ -240,8 +240,13 @@ fn claims_need_runs_and_nan_runs_show_no_absence() {
     assert!(nan_runs > 0, "the case no longer reaches NaN");
     let never = evaluate(&runs).into_iter().find(|c| c.text.starts_with("Linahan's response never lets")).unwrap();
     assert!(never.evidence.contains(&format!("left out: {nan_runs} runs with NaN frames")), "{never:?}");
-    let clean = runs.records.len() - nan_runs;
-    assert_eq!(never.reproduced, clean > 0 && never.evidence.starts_with("no penetrating frame"), "{never:?}");
+    // Expected from the runs themselves, not from the claim's own words: no
+    // run penetrates (counted as the one-sided detection counts) and some
+    // run is free of NaN.
+    let results: Vec<_> = runs.records.iter().filter_map(|r| r.outcome.as_ref().ok()).collect();
+    let clean = results.iter().filter(|o| o.nan_frames == 0).count();
+    let penetrating = results.iter().filter(|o| o.counted_penetration().0 > 0).count();
+    assert_eq!(never.reproduced, clean > 0 && penetrating == 0, "{never:?}");
 }
 
 /// A mesh whose triangle collapses once rounded into `f32` (one `1e8` from

@@ -85,6 +85,7 @@ impl Slot {
         (0..60).fold(f64::NEG_INFINITY, |worst, frame| {
             let step = move_body(&world, &body, &p, &v(self.velocity), Some(&v(self.gravity)), &options);
             p = step.unwrap_or_else(|e| panic!("frame {frame}: {e}")).position;
+            assert!(p.iter().all(|x| x.is_finite()), "frame {frame}: {p:?}");
             worst.max(penetration(&world, &radii, &p).unwrap_or(f64::NEG_INFINITY))
         })
     }
