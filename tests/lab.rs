@@ -690,3 +690,22 @@ fn triangles_degenerate_in_the_runs_precision_are_noted() {
     assert!(noted("f32"));
     assert!(!noted("f64"));
 }
+
+/// A finding file records the response and precision that failed: a run
+/// with others says so and how to reproduce it, a run with the same says
+/// nothing (fixed in the twenty-first session without a test: a review).
+#[test]
+fn a_finding_run_with_another_response_or_precision_says_how_to_reproduce_it() {
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz/linahan-nan-narrow-slot.json");
+    let case = case.to_str().unwrap();
+    let stderr = |args: &[&str]| {
+        let out = sweepslide(&[&["run", "--case", case, "--frames", "2"], args].concat());
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let other = stderr(&[]);
+    assert!(other.contains("records response `linahan`") && other.contains("pass --response linahan"), "{other}");
+    assert!(other.contains("records precision `f32`") && other.contains("pass --precision f32"), "{other}");
+    let same = stderr(&["--response", "linahan", "--precision", "f32"]);
+    assert!(!same.contains("records"), "{same}");
+}

@@ -360,3 +360,28 @@ fn csv_quotes_odd_scene_names_and_inconsistent_runs_are_refused() {
     assert!(e.contains("record 0") && e.contains("entered from behind"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Failed runs are said on standard error by `merge` (and `report`), with
+/// their scene, response, precision and error, beside the page's list
+/// (fixed in the twenty-first session without a test: a review).
+#[test]
+fn merge_warns_of_failed_runs_on_standard_error() {
+    let (info, entries) = matrix(true, &[], &[]);
+    let mut entry = entries[0].clone();
+    entry.index = 0;
+    let info = sweepslide::report::matrix::MatrixInfo { runs: 1, ..info };
+    let runs = Runs { info, records: vec![Record { entry, outcome: Err("the run broke here".into()), frames: None }] };
+    let dir = std::env::temp_dir().join(format!("sweepslide-failed-{}", std::process::id()));
+    let shard = dir.join("shard");
+    sweepslide::report::write_runs(&shard, &runs).unwrap();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_sweepslide"))
+        .args(["merge", dir.join("merged").to_str().unwrap(), shard.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("warning: 1 of 1 runs failed") && stderr.contains("the run broke here"), "{stderr}");
+    let html = std::fs::read_to_string(dir.join("merged/index.html")).unwrap();
+    assert!(html.contains("1 runs failed") && html.contains("the run broke here"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
