@@ -657,7 +657,7 @@ fn a_moved_obj_mesh_names_the_lines_of_the_triangles_it_collapses() {
         "# big and thin\nv 0 0 0\nv 100 0 0\nv 0 0 100\nv 0.001 0 0\nv 0 0.001 0\nf 1 1 2\nf 1 3 2\nf 1 3 4\nf 1 2 5\n";
     let mesh = TriangleMesh::from_obj_str(text, Path::new("x.obj")).unwrap();
     assert_eq!(mesh.len(), 3);
-    let line_of = |m: &TriangleMesh| match &m.skipped()[..] {
+    let line_of = |m: &TriangleMesh| match m.skipped() {
         [Error::Obj { path, line, message }] => {
             assert_eq!(path, Path::new("x.obj"));
             assert!(message.contains("degenerate"), "{message}");
