@@ -8,8 +8,8 @@ use crate::Real;
 use crate::world::ActiveFeatures;
 
 use crate::geom::{
-    Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, max_abs, norm, norm_squared, normalize,
-    normalize_near_unit,
+    Feature, Plane, Triangle, Vec3, closest_point_on_sides, closest_point_on_triangle, cross, dot, max_abs, norm,
+    norm_squared, normalize, normalize_near_unit,
 };
 
 /// Where and how a contact was found: the sphere centre and the contact
@@ -423,10 +423,10 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
         // times the lever (0.59 radii on a 40 x 0.05 strip in `f32`, and a
         // sphere started 0.1 inside it passed through: a review), where the
         // side tests are orientations of the edges, exact but for `u`.
-        let foot = normal.as_ref().filter(|_| !clear_of_plane && c.long_lever).map(|n| n * -plane_dist.clone());
-        let (closest, feature) = match foot.filter(|f| inside_sides(c, &rel, f)) {
-            Some(f) => (f, Feature::Face),
-            None => closest_point_on_triangle(&Vec3::zeros(), &rel),
+        let (closest, feature) = if c.long_lever && !clear_of_plane {
+            long_lever_closest(c, &rel, normal.as_ref().map(|n| n * -plane_dist.clone()))
+        } else {
+            closest_point_on_triangle(&Vec3::zeros(), &rel)
         };
         let closest_sq = norm_squared(&closest);
         if closest_sq > gap_bound_sq {
@@ -1064,10 +1064,10 @@ pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions
             plane_dist = -plane_dist;
         }
     }
-    let foot = face.as_ref().filter(|_| c.long_lever).map(|n| n * -plane_dist.clone());
-    let (closest, feature) = match foot.filter(|f| inside_sides(c, &rel, f)) {
-        Some(f) => (f, Feature::Face),
-        None => closest_point_on_triangle(&Vec3::zeros(), &rel),
+    let (closest, feature) = if c.long_lever {
+        long_lever_closest(c, &rel, face.as_ref().map(|n| n * -plane_dist.clone()))
+    } else {
+        closest_point_on_triangle(&Vec3::zeros(), &rel)
     };
     let face_normal = face.clone().unwrap_or_else(|| normalize(&-closest.clone()).unwrap_or_else(Vec3::zeros));
     let local = Local { p, c, face: face.as_ref(), plane_dist: &plane_dist, nearest };
@@ -1076,9 +1076,11 @@ pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions
 }
 
 /// The point of candidate `c` closest to `p`, and the feature it lies on:
-/// the foot of `p` on the plane where the side tests (the orientations of
-/// the candidate's edges with the foot, seen along its normal)
-/// place it inside the triangle, else [`closest_point_on_triangle`].
+/// [`closest_point_on_triangle`] (Ericson's), or, for a candidate whose
+/// lever can be long ([`Candidate::long_lever`]), the foot of `p` on the
+/// plane where the side tests (the orientations of the candidate's edges
+/// with the foot, seen along its normal) place it inside the triangle, and
+/// else the nearest point of its three sides.
 ///
 /// Rounded: the foot is `p` moved along the candidate's unit normal by the
 /// distance to the plane through the vertex nearest `p` (errors of order
@@ -1089,9 +1091,8 @@ pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions
 /// `k far / |e|` (`k` the shape factor, `far` the distance to the
 /// vertices, `|e|` the longest edge): 0.59 radii for a centre 0.9 above a
 /// 40 x 0.05 strip in `f32`, where the foot is exact to `u` (a review).
-/// Where the foot is found outside, the point is Ericson's, within rounding
-/// of the side's line or beyond it. The foot is tried only where Ericson's
-/// lever can be long ([`Candidate::long_lever`]): elsewhere, within the
+/// The sides' points are projections on the edges, off by a few `u` times
+/// the distance. Ericson's is kept where the lever is short: within the
 /// reach of a contact (`far` at most `|e| + 1.05`), the lever is at most
 /// `4 (1 + 1.05)`, about 8, and the point off by at most `u k^2 far^2 /
 /// |e|`, some 70 `u` (the terrain's triangles, `k` about 1.2 and `|e|`
@@ -1100,23 +1101,30 @@ pub fn proximity<T: Real>(c: &Candidate<T>, base: &Vec3<T>, opts: &DetectOptions
 #[must_use]
 #[inline(always)]
 pub fn closest_point<T: Real>(c: &Candidate<T>, p: &Vec3<T>) -> (Vec3<T>, Feature) {
-    if let Some(n) = c.normal.as_ref().filter(|_| c.long_lever) {
-        let rel = c.triangle.relative_to(p);
-        let corners = [&rel.a, &rel.b, &rel.c];
-        let foot = n * dot(n, corners[nearest_vertex(&corners.map(norm_squared))]);
-        if inside_sides(c, &rel, &foot) {
-            return (foot + p, Feature::Face);
-        }
+    if !c.long_lever {
+        return closest_point_on_triangle(p, &c.triangle);
     }
-    closest_point_on_triangle(p, &c.triangle)
+    let rel = c.triangle.relative_to(p);
+    let corners = [&rel.a, &rel.b, &rel.c];
+    let foot = c.normal.as_ref().map(|n| n * dot(n, corners[nearest_vertex(&corners.map(norm_squared))]));
+    let (q, feature) = long_lever_closest(c, &rel, foot);
+    (q + p, feature)
 }
 
-/// Whether point `q` (in the coordinates of `rel`, candidate `c`'s vertices
-/// relative to some origin) lies within every side of the triangle, as
-/// seen along its normal: [`side_outside`] finds no side it lies beyond.
-/// `false` for a candidate without a normal (degenerate).
-fn inside_sides<T: Real>(c: &Candidate<T>, rel: &Triangle<T>, q: &Vec3<T>) -> bool {
-    c.normal.as_ref().is_some_and(|winding| side_outside(c, rel, winding, q).is_none())
+/// The closest point to the origin of a long-lever candidate (vertices
+/// `rel` relative to the origin) given the origin's foot on its plane
+/// (`None` without a normal): the foot where the side tests place it
+/// inside the triangle, else the nearest point of its sides. Ericson's face
+/// coordinates are never used: with the foot just outside a long side they
+/// put the point up to 2.7 radii off on a strip of shape factor 990 in
+/// `f32`, where the sides' points are off by a few `u` times the distance
+/// (a review of the first version, which fell back on them).
+fn long_lever_closest<T: Real>(c: &Candidate<T>, rel: &Triangle<T>, foot: Option<Vec3<T>>) -> (Vec3<T>, Feature) {
+    let inside = |f: &Vec3<T>| c.normal.as_ref().is_some_and(|winding| side_outside(c, rel, winding, f).is_none());
+    match foot.filter(inside) {
+        Some(f) => (f, Feature::Face),
+        None => closest_point_on_sides(&Vec3::zeros(), rel),
+    }
 }
 
 /// The index of the vertex nearest the origin, given their squared

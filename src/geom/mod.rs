@@ -12,8 +12,8 @@ mod vec;
 
 pub use ellipsoid::Ellipsoid;
 pub use plane::Plane;
-pub(crate) use triangle::unit_scale;
 pub use triangle::{Feature, Triangle, closest_point_on_triangle};
+pub(crate) use triangle::{closest_point_on_sides, unit_scale};
 pub use vec::{
     Vec3, cross, dot, from_f64, is_finite, max_abs, norm, norm_squared, normalize, normalize_near_unit, to_f64, vec3,
 };

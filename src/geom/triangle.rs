@@ -215,7 +215,7 @@ pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Ve
     if !(area > zero) {
         // Collinear vertices (degenerate in this precision): the nearest
         // point of the three sides.
-        return degenerate_closest_point(p, tri);
+        return closest_point_on_sides(p, tri);
     }
     // One quotient, two products (Ericson's form).
     let inverse = T::one() / area;
@@ -224,10 +224,14 @@ pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Ve
     (&tri.a + ab * v + ac * w, Feature::Face)
 }
 
-/// The closest point of a triangle whose vertices are collinear in this
-/// precision: the nearest of the closest points of its three sides (a side
-/// of zero length gives its vertex).
-fn degenerate_closest_point<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {
+/// The point of `tri`'s boundary closest to `p`: the nearest of the closest
+/// points of its three sides (a side of zero length gives its vertex), the
+/// first on a tie. The closest point of the triangle where `p`'s foot on
+/// the plane lies outside it, or of a triangle whose vertices are
+/// collinear in this precision. Rounded: each side's parameter is a
+/// quotient of two dot products, off by a few `u` times `|p - a| / |e|`,
+/// so the point by a few `u |p - a|`, whatever the triangle's shape.
+pub(crate) fn closest_point_on_sides<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {
     let ends = [(&tri.a, &tri.b), (&tri.b, &tri.c), (&tri.c, &tri.a)];
     let side = |i: usize| {
         let (a, b) = ends[i];

@@ -154,3 +154,48 @@ fn a_sphere_started_inside_a_long_strip_is_met_at_the_start() {
     check::<f32>();
     check::<f64>();
 }
+
+/// A review of the fix above: where the centre's foot lies just outside a
+/// strip's long side, the first version fell back on Ericson's point,
+/// which put the closest point on the face, 1.097 away where the sphere
+/// overlaps the side by 0.01 (shape factor 990, `f32`): the sweep passed
+/// through the strip; and a body started 0.5 inside a strip turned half a
+/// radian about the vertical, its centre `1e-4` beyond the long side, was
+/// not pushed out. The nearest point of the sides now stands where the foot
+/// is outside.
+#[test]
+fn a_sphere_overlapping_a_long_strips_side_is_met_and_pushed_out() {
+    use sweepslide::detect::{Candidate, sweep_robust};
+    use sweepslide::geom::{Feature, Triangle};
+    fn check<T: Real>() {
+        let v = |p: [f64; 3]| vec3::<T>(p[0], p[1], p[2]);
+        let strip = Candidate::lone(
+            0,
+            Triangle::new(
+                v([0.0, 0.0, 0.0]),
+                v([21.612_092_971_801_758, 21.683_620_452_880_86, -25.743_700_027_465_82]),
+                v([21.646_091_461_181_64, 21.669_555_664_062_5, -25.727_003_097_534_18]),
+            ),
+        );
+        let base = v([9.077_070_236_206_055, 9.864_317_893_981_934, -10.174_582_481_384_277]);
+        let vel = v([0.0, -1.529_684_424_400_329_6, -1.288_435_339_927_673_3]);
+        let hit = sweep_robust(&strip, &base, &vel, &DetectOptions::default(), None);
+        let met = hit.as_ref().map(|h| (h.t.to_f64(), h.feature, h.started_overlapping));
+        assert_eq!(met, Some((0.0, Feature::Edge(0), true)), "{}", T::name());
+        let corners = vec![
+            [-87.806_198_120_117_19, 0.0, 47.854_797_363_281_25],
+            [87.806_198_120_117_19, 0.0, -47.854_797_363_281_25],
+            [87.710_311_889_648_44, 0.0, -48.030_311_584_472_656],
+        ];
+        let world = World::<T>::new(Arc::new(TriangleMesh::new(corners, vec![[0, 1, 2]]).unwrap())).unwrap();
+        let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+        let start = v([-65.197_700_500_488_28, 0.5, 35.503_604_888_916_016]);
+        let gravity = v([0.0, -0.5, 0.0]);
+        let m = move_body(&world, &body, &start, &Vec3::zeros(), Some(&gravity), &MoveOptions::new(Response::Robust))
+            .unwrap();
+        let depth = penetration(&world, body.radii(), &m.position).expect("the strip is within reach");
+        assert!(depth <= 0.0, "{}: {depth:e} inside at {:?}", T::name(), m.position);
+    }
+    check::<f32>();
+    check::<f64>();
+}
