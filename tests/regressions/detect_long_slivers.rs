@@ -104,6 +104,19 @@ fn a_tiny_triangle_far_away_is_not_touched_at_the_start() {
     assert!(hit.as_ref().is_some_and(|h| (h.t - 0.5054).abs() < 1e-3 && !h.started_overlapping), "{hit:?}");
 }
 
+/// A unit sphere started at `start` inside the lone triangle `corners`,
+/// moved by a gravity of 0.5 radii for one frame, ends outside it.
+fn pushed_out_of<T: Real>(corners: [[f64; 3]; 3], start: [f64; 3]) {
+    let v = |p: [f64; 3]| vec3::<T>(p[0], p[1], p[2]);
+    let world = World::<T>::new(Arc::new(TriangleMesh::new(corners.to_vec(), vec![[0, 1, 2]]).unwrap())).unwrap();
+    let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+    let gravity = v([0.0, -0.5, 0.0]);
+    let options = MoveOptions::new(Response::Robust);
+    let m = move_body(&world, &body, &v(start), &Vec3::zeros(), Some(&gravity), &options).unwrap();
+    let depth = penetration(&world, body.radii(), &m.position).expect("the triangle is within reach");
+    assert!(depth <= 0.0, "{}: {depth:e} inside at {:?}", T::name(), m.position);
+}
+
 /// A review (twenty-second session): a sphere started 0.1 or 0.5 radii
 /// inside a long strip (40 x 0.05 or 100 x 0.1, shape factor 800 and
 /// 1000, within the fuzzers' range) was not met at the start in `f32`:
@@ -141,15 +154,7 @@ fn a_sphere_started_inside_a_long_strip_is_met_at_the_start() {
         // A body started 0.5 inside a strip, still but for gravity, is
         // pushed out.
         let (h, w) = (100.0, 0.1);
-        let mesh = TriangleMesh::new(vec![[-h, 0.0, -w], [h, 0.0, w], [h, 0.0, -w]], vec![[0, 1, 2]]).unwrap();
-        let world = World::<T>::new(Arc::new(mesh)).unwrap();
-        let body = Ellipsoid::<T>::sphere(1.0).unwrap();
-        let start = v([-75.9877, 0.5, -0.092_796_31]);
-        let gravity = v([0.0, -0.5, 0.0]);
-        let m = move_body(&world, &body, &start, &Vec3::zeros(), Some(&gravity), &MoveOptions::new(Response::Robust))
-            .unwrap();
-        let depth = penetration(&world, body.radii(), &m.position).expect("the strip is within reach");
-        assert!(depth <= 0.0, "{}: {depth:e} inside at {:?}", T::name(), m.position);
+        pushed_out_of::<T>([[-h, 0.0, -w], [h, 0.0, w], [h, 0.0, -w]], [-75.9877, 0.5, -0.092_796_31]);
     }
     check::<f32>();
     check::<f64>();
@@ -182,19 +187,12 @@ fn a_sphere_overlapping_a_long_strips_side_is_met_and_pushed_out() {
         let hit = sweep_robust(&strip, &base, &vel, &DetectOptions::default(), None);
         let met = hit.as_ref().map(|h| (h.t.to_f64(), h.feature, h.started_overlapping));
         assert_eq!(met, Some((0.0, Feature::Edge(0), true)), "{}", T::name());
-        let corners = vec![
+        let corners = [
             [-87.806_198_120_117_19, 0.0, 47.854_797_363_281_25],
             [87.806_198_120_117_19, 0.0, -47.854_797_363_281_25],
             [87.710_311_889_648_44, 0.0, -48.030_311_584_472_656],
         ];
-        let world = World::<T>::new(Arc::new(TriangleMesh::new(corners, vec![[0, 1, 2]]).unwrap())).unwrap();
-        let body = Ellipsoid::<T>::sphere(1.0).unwrap();
-        let start = v([-65.197_700_500_488_28, 0.5, 35.503_604_888_916_016]);
-        let gravity = v([0.0, -0.5, 0.0]);
-        let m = move_body(&world, &body, &start, &Vec3::zeros(), Some(&gravity), &MoveOptions::new(Response::Robust))
-            .unwrap();
-        let depth = penetration(&world, body.radii(), &m.position).expect("the strip is within reach");
-        assert!(depth <= 0.0, "{}: {depth:e} inside at {:?}", T::name(), m.position);
+        pushed_out_of::<T>(corners, [-65.197_700_500_488_28, 0.5, 35.503_604_888_916_016]);
     }
     check::<f32>();
     check::<f64>();
