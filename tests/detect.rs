@@ -646,3 +646,33 @@ fn a_plane_reached_long_after_the_frame_is_not_met() {
     let hit = sweepslide::detect::sweep_robust(&c, &base, &vel, &DetectOptions::default(), None);
     assert!(hit.is_none(), "{hit:?}");
 }
+
+/// A review (twenty-second session): a ground triangle whose sides' products
+/// overflow (half-size `3e9` radii and more in `f32`, `2e77` in `f64`) had
+/// an infinite area, so no normal and no face: a sweep down onto it found
+/// nothing, where the gather refuses only triangles whose sides' squares
+/// overflow. Its area is now taken from the scaled cross product.
+fn huge_ground_is_hit<T: Real>(half: f64) {
+    let corners = vec![[-half, 0.0, -half], [half, 0.0, -half], [0.0, 0.0, half]];
+    let world = World::<T>::new(Arc::new(TriangleMesh::new(corners, vec![[0, 2, 1]]).unwrap())).unwrap();
+    let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+    let hit =
+        sweep_world(&world, &body, &v([0.0, 2.0, 0.0]), &v([0.0, -3.0, 0.0]), Detection::Robust, &Default::default())
+            .unwrap();
+    let met = hit.map(|h| (h.t.to_f64(), h.feature));
+    assert!(
+        met.is_some_and(|(t, f)| (t - 1.0 / 3.0).abs() < 1e-6 && f == Feature::Face),
+        "{} {half:e}: {met:?}",
+        T::name()
+    );
+}
+
+#[test]
+fn a_ground_triangle_whose_area_overflows_is_still_hit() {
+    for half in [3e9, 1e12, 1e18] {
+        huge_ground_is_hit::<f32>(half);
+    }
+    for half in [2e77, 1e150] {
+        huge_ground_is_hit::<f64>(half);
+    }
+}

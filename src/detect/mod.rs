@@ -219,7 +219,15 @@ impl<T: Real> Candidate<T> {
         } else {
             (cross(&edges[0], &edges[1]), l2)
         };
-        let area2 = norm(&raw);
+        let mut area2 = norm(&raw);
+        if !area2.is_finite() && is_finite(&raw) {
+            // The squares overflowed (sides beyond about `4e9` radii in
+            // `f32`, `1e77` in `f64`): the norm of the vector scaled by its
+            // largest coordinate. Left infinite, the triangle had no normal
+            // and no face, and a sweep onto it found nothing (a review).
+            let m = max_abs(&raw, T::zero());
+            area2 = norm(&raw.map(|x| x / &m)) * m;
+        }
         let has_area = area2 > T::zero() && area2.is_finite();
         // As `normalize(&raw)`, without taking the norm twice. (A product by
         // one reciprocal would save two quotients, but its extra `2u` per
