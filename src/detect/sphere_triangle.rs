@@ -449,18 +449,11 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
                 // Overlapping, only the approach's sign decides. An edge's
                 // direction, the perpendicular from its line, is off by
                 // about `u |from| / dist` (`from` its nearer end), without
-                // bound as the centre nears the line, and motion along the
-                // edge would carry that error into the sign (fuzz finding
-                // F21): only the motion across the line counts, which is
-                // the same in exact arithmetic (the direction is
-                // perpendicular to the edge, the face normal too).
-                let approach = match feature {
-                    Feature::Edge(i) if overlapping => {
-                        let e = &edges[usize::from(i)];
-                        -dot(&sep, &(vel - e * (dot(vel, e) / &c.edge_sq[usize::from(i)])))
-                    }
-                    _ => -dot(&sep, vel),
-                };
+                // bound as the centre nears the line; motion along the edge
+                // would carry that error into the sign (fuzz finding F21),
+                // but `separation` takes the direction across the edge, to
+                // `u`, so only the motion across the line counts.
+                let approach = -dot(&sep, vel);
                 let approached = if overlapping {
                     approach > zero
                 } else {
@@ -577,7 +570,22 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
             best = Some(Touch { t, point: (*v).clone(), centre, feature: Feature::Vertex(i as u8) });
         }
     }
-    Some(best?.into_hit(Some(base), face_normal, index, false))
+    let mut hit = best?.into_hit(Some(base), face_normal, index, false);
+    if let Feature::Edge(i) = hit.feature {
+        // Across the edge, as `separation` takes it at the start (fuzz
+        // finding F35): `centre - point` is off by `u` of the centre's
+        // distance from the edge's nearer end, along the edge too.
+        let i = usize::from(i);
+        hit.normal = normalize_near_unit(&across(&hit.normal, &edges[i], &c.edge_sq[i])).unwrap_or(hit.normal);
+    }
+    Some(hit)
+}
+
+/// `v` less its component along `e` (`e2` its squared length): the part of
+/// `v` across the line of `e`.
+#[inline(always)]
+fn across<T: Real>(v: &Vec3<T>, e: &Vec3<T>, e2: &T) -> Vec3<T> {
+    v - e * (dot(v, e) / e2)
 }
 
 /// The entry of the unit sphere moving by `vel` into the unit cylinder
@@ -997,7 +1005,17 @@ impl<T: Real> Local<'_, T> {
             (Feature::Edge(i), _) => {
                 let (a, b, e) = (p[i as usize], p[(i as usize + 1) % 3], &self.c.edges[i as usize]);
                 let (from, e) = if norm_squared(a) <= norm_squared(b) { (a, e.clone()) } else { (b, -e.clone()) };
-                let perp = -from - &e * (dot(&-from, &e) / &self.c.edge_sq[i as usize]);
+                let perp = across(&(-from), &e, &self.c.edge_sq[i as usize]);
+                // Once more: `perp`, the difference of two vectors of the
+                // size of `from`, is off by `u |from|` in every direction,
+                // along the edge too, and a slide along the edge (a crease
+                // with a parallel face) carries that component into the
+                // distance, `u |from|` per radius slid: 1.5e-4 radii into
+                // an `f32` ledge after a 97-radius slide (fuzz finding
+                // F35). Across the edge it is off by `u` only; what is
+                // left is a turn about the edge, which a slide along it
+                // does not feel.
+                let perp = across(&perp, &e, &self.c.edge_sq[i as usize]);
                 let d = norm(&perp);
                 let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
                 (d, sep, from)
