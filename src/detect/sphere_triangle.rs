@@ -177,6 +177,9 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   `tol` of 1, at which the centre's projection is inside the triangle
 ///   (see `face_window`); otherwise the edge tests decide, which agree to
 ///   second order.
+/// * An edge contact's direction is projected across the edge twice: off
+///   by `u` along the edge (a slide along the edge then keeps its
+///   distance), by `u s` only as a turn about it (fuzz finding F35).
 /// * Edges and vertices: squared-distance quadratics from cross products
 ///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
 ///   `(e.v)^2`), their discriminants from Lagrange's identity (no
@@ -990,8 +993,9 @@ impl<T: Real> Local<'_, T> {
     /// when the centre is over the face)
     /// and the touching tolerance. Distance and direction are computed per
     /// feature, from the nearest point that defines it, so both carry errors
-    /// of order `u` times that point's magnitude `s`; the tolerance is
-    /// `opts.touch_ulps * u * max(1, s)`.
+    /// of order `u` times that point's magnitude `s` (an edge's direction
+    /// only as a turn about the edge: along the edge it is off by `u`,
+    /// F35); the tolerance is `opts.touch_ulps * u * max(1, s)`.
     fn separation(
         &self,
         closest: &Vec3<T>,
