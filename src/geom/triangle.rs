@@ -226,11 +226,17 @@ pub fn closest_point_on_triangle<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Ve
 
 /// The point of `tri`'s boundary closest to `p`: the nearest of the closest
 /// points of its three sides (a side of zero length gives its vertex), the
-/// first on a tie. The closest point of the triangle where `p`'s foot on
-/// the plane lies outside it, or of a triangle whose vertices are
-/// collinear in this precision. Rounded: each side's parameter is a
-/// quotient of two dot products, off by a few `u` times `|p - a| / |e|`,
-/// so the point by a few `u |p - a|`, whatever the triangle's shape.
+/// first on a tie, but never a vertex one of whose two sides has `p`'s
+/// foot inside it: that side's point is then nearer in exact arithmetic,
+/// while the rounded distances can tie (a centre beside an edge `1e-11`
+/// from its end, the vertex's distance larger by `1e-22`), and a vertex
+/// taken for the edge has a direction off along the edge, which a sweep
+/// along the edge reads as receding (fuzz finding F36). The closest point
+/// of the triangle where `p`'s foot on the plane lies outside it, or of a
+/// triangle whose vertices are collinear in this precision. Rounded: each
+/// side's parameter is a quotient of two dot products, off by a few `u`
+/// times `|p - a| / |e|`, so the point by a few `u |p - a|`, whatever the
+/// triangle's shape.
 pub(crate) fn closest_point_on_sides<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) -> (Vec3<T>, Feature) {
     let ends = [(&tri.a, &tri.b), (&tri.b, &tri.c), (&tri.c, &tri.a)];
     let side = |i: usize| {
@@ -247,8 +253,16 @@ pub(crate) fn closest_point_on_sides<T: Real>(p: &Vec3<T>, tri: &Triangle<T>) ->
         };
         (norm_squared(&(p - &point)), point, feature)
     };
-    // The nearest side, the first on a tie.
-    let (_, point, feature) =
-        [side(1), side(2)].into_iter().fold(side(0), |best, s| if s.0 < best.0 { s } else { best });
-    (point, feature)
+    let sides = [side(0), side(1), side(2)];
+    // Vertex `v` starts side `v` and ends side `v + 2` (mod 3).
+    let inside = sides.each_ref().map(|s| matches!(s.2, Feature::Edge(_)));
+    let allowed = |i: usize| match sides[i].2 {
+        Feature::Vertex(v) => !(inside[usize::from(v)] || inside[(usize::from(v) + 2) % 3]),
+        _ => true,
+    };
+    // The nearest allowed side, the first on a tie (an edge is always
+    // allowed, and without one no vertex is ruled out).
+    let best = (0..3).filter(|&i| allowed(i)).reduce(|k, i| if sides[i].0 < sides[k].0 { i } else { k }).unwrap_or(0);
+    let (_, point, feature) = &sides[best];
+    (point.clone(), *feature)
 }

@@ -9,7 +9,7 @@
 use std::path::Path;
 use std::sync::Arc;
 use sweepslide::Real;
-use sweepslide::detect::{Candidate, DetectOptions, Detection, proximity, sweep_robust, sweep_world};
+use sweepslide::detect::{Candidate, DetectOptions, Detection, closest_point, proximity, sweep_robust, sweep_world};
 use sweepslide::geom::{Ellipsoid, Feature, Triangle, Vec3, closest_point_on_triangle, vec3};
 use sweepslide::lab::metrics::penetration;
 use sweepslide::respond::{MoveOptions, Response, StopReason, move_body};
@@ -1145,4 +1145,36 @@ fn edge_contact_normals_lie_across_the_edge_however_far_its_ends() {
 
 fn v3(p: [f64; 3]) -> Vec3<f32> {
     vec3(p[0], p[1], p[2])
+}
+
+/// F36 (twenty-third session, `sweep_triangle`, `f64`): a unit sphere
+/// overlapping a triangle's edge by `1e-3`, its foot on the edge `1e-11`
+/// from the edge's end, swept 177 radii along the edge and `7e-10` towards
+/// it, got no hit (it sinks `1.2e-11` further). The triangle's shape
+/// factor, 4.4, makes it a long-lever candidate, whose closest point is the
+/// nearest of the sides' points: the vertex and the edge point were equally
+/// near in `f64` (they differ by `5e-23`), the first on the tie was the
+/// vertex, and the vertex's direction, `1e-11` off along the edge, read
+/// the motion along the edge as receding. A vertex is no longer taken
+/// where one of its sides has the foot inside it. Pinned at the detection
+/// and at the closest point.
+#[test]
+fn overlapping_start_beside_an_edges_end_sweeping_along_it_is_met() {
+    let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
+    let c = Candidate::lone(
+        0,
+        Triangle::new(
+            v([-77369.4228463483, -77369.2271115758, 98469.68719250335]),
+            v([-77369.42284634733, -77368.9402615018, 98470.38171152912]),
+            v([-77369.4228463503, -77372.08087198879, 98470.55366007311]),
+        ),
+    );
+    let base = v([-77369.3231127683, -77372.3696583591, 98469.60252567411]);
+    let vel = v([1.1796221529784742e-7, 169.3942095105374, -51.43199421268998]);
+    assert!(c.long_lever, "the case is meant for the long-lever closest point");
+    assert_eq!(closest_point(&c, &base).1, Feature::Edge(2));
+    let near = proximity(&c, &base, &DetectOptions::default()).expect("two-sided");
+    assert_eq!(near.feature, Feature::Edge(2), "{near:?}");
+    let hit = sweep_robust(&c, &base, &vel, &DetectOptions::default(), None).expect("met at the start");
+    assert!(hit.t == 0.0 && hit.started_overlapping && hit.feature == Feature::Edge(2), "{hit:?}");
 }
