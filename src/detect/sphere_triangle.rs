@@ -515,15 +515,23 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
         let a = p[ends[usize::from(from_end)]];
         let lo = if from_end { -one.clone() } else { zero.clone() };
         let e2 = c.edge_sq[i].clone();
+        // The quadratic is formed from `a` across the edge, the same in
+        // exact arithmetic (`m` is perpendicular to `e`): the rounded `m`
+        // has a component of `u |e| |vel|` along `e`, which `m . a` took
+        // times `a`'s reach along the edge (a review: in `f32` a sweep
+        // along an edge whose nearer end lay 600 radii along it got a
+        // negative discriminant and missed the edge, `3.6e-3` deep by the
+        // end; `f64` missed entries 500 times its padding deep).
+        let a_across = across(a, e, &e2);
         let m = cross(e, vel);
-        let k = cross(e, a);
+        let k = cross(e, &a_across);
         let c = norm_squared(&k) - &e2;
         if !(c > zero) {
             continue;
         }
         // disc = (m.k)^2 - |m|^2 c = |e|^2 (|m|^2 - (m.a)^2) by Lagrange's
         // identity, since m x k = e (m . a): no fourth powers cancel.
-        let det = dot(&m, a);
+        let det = dot(&m, &a_across);
         let m2 = norm_squared(&m);
         let disc = e2.clone() * (m2.clone() - det.clone() * &det);
         let entry = EdgeEntry { e2, m2, half_b: -dot(&m, &k), c, disc };

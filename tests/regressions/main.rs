@@ -3,6 +3,7 @@
 //! a variant once gave (or still gives, for the faithful baselines) a wrong
 //! answer.
 
+mod detect_long_edges;
 mod detect_long_slivers;
 mod fauerby_detection;
 mod fuzz_found;
