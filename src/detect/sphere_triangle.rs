@@ -1024,9 +1024,11 @@ impl<T: Real> Local<'_, T> {
                 // with a parallel face) carries that component into the
                 // distance, `u |from|` per radius slid: 1.5e-4 radii into
                 // an `f32` ledge after a 97-radius slide (fuzz finding
-                // F35). Across the edge it is off by `u` only; what is
-                // left is a turn about the edge, which a slide along it
-                // does not feel.
+                // F35). Projected again, its part along the edge is off by
+                // about `u` (more only within `u |from|` of the line, where
+                // the direction is rounding noise anyway); what is left is
+                // a turn about the edge, which a slide along it does not
+                // feel.
                 let perp = across(&perp, &e, &self.c.edge_sq[i as usize]);
                 let d = norm(&perp);
                 let sep = normalize(&perp).unwrap_or_else(|| face_normal.clone());
