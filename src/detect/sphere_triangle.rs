@@ -177,8 +177,9 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   `tol` of 1, at which the centre's projection is inside the triangle
 ///   (see `face_window`); otherwise the edge tests decide, which agree to
 ///   second order.
-/// * An edge contact's direction is projected across the edge twice: off
-///   by `u` along the edge (a slide along the edge then keeps its
+/// * An edge contact's direction is projected across the edge (at the
+///   start a second time, after the perpendicular's own projection): off
+///   by about `u` along the edge (a slide along the edge then keeps its
 ///   distance), by `u s` only as a turn about it (fuzz finding F35).
 /// * Edges and vertices: squared-distance quadratics from cross products
 ///   (`|e x (t v - p)|^2 = |e|^2`, no cancellation of `|e|^2 |v|^2` against
@@ -449,14 +450,24 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
                 // Touching: approached by more than `opts.approach_ulps`;
                 // overlapping: by any amount.
                 let overlapping = dist < one.clone() - &tol;
-                // Overlapping, only the approach's sign decides. An edge's
-                // direction, the perpendicular from its line, is off by
-                // about `u |from| / dist` (`from` its nearer end), without
-                // bound as the centre nears the line; motion along the edge
-                // would carry that error into the sign (fuzz finding F21),
-                // but `separation` takes the direction across the edge, to
-                // `u`, so only the motion across the line counts.
-                let approach = -dot(&sep, vel);
+                // Overlapping, only the approach's sign decides, and only
+                // the motion across the edge's line counts: the same in
+                // exact arithmetic, since the direction is perpendicular
+                // to the edge. Motion along the edge would carry the
+                // direction's error along it into the sign: `u |from| /
+                // dist` for the perpendicular from the line before it was
+                // projected across the edge a second time (fuzz finding
+                // F21), and still `u` times the tilt for the face normal
+                // that stands in for an inactive edge (a review: a flat
+                // cap's inactive edge, overlapped and sunk into at `2.5e-5`
+                // per frame, read as receding).
+                let approach = match feature {
+                    Feature::Edge(i) if overlapping => {
+                        let i = usize::from(i);
+                        -dot(&sep, &across(vel, &edges[i], &c.edge_sq[i]))
+                    }
+                    _ => -dot(&sep, vel),
+                };
                 let approached = if overlapping {
                     approach > zero
                 } else {

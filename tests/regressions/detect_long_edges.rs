@@ -6,6 +6,8 @@
 //! `e`, which `m . a` multiplied by `a`'s reach along the edge, hundreds of
 //! radii: at a grazing angle the discriminant came out negative and the
 //! edge was dropped. The quadratic is now formed from `a` across the edge.
+//! And, found by the session's second review, an overlapped inactive edge
+//! of a long flat cap, sunk into while sliding along it (R23b).
 
 use std::sync::Arc;
 use sweepslide::detect::{Candidate, DetectOptions, sweep_robust};
@@ -14,6 +16,10 @@ use sweepslide::lab::metrics::penetration;
 use sweepslide::respond::{MoveOptions, Response, move_body};
 use sweepslide::world::{TriangleMesh, World};
 
+fn v32(x: [f64; 3]) -> Vec3<f32> {
+    vec3(x[0], x[1], x[2])
+}
+
 /// A unit sphere at the origin in `f32`, swept 282 radii nearly along
 /// edge 0, whose nearer end lies about 600 radii along it: it starts
 /// `2.2e-3` outside the edge's line, enters its cylinder at `t = 0.256`
@@ -21,16 +27,15 @@ use sweepslide::world::{TriangleMesh, World};
 /// was `-2.2e7` where it is `+1.5e8`.
 #[test]
 fn grazing_sweep_along_a_long_edge_whose_end_is_far_enters_it() {
-    let v = |x: [f64; 3]| vec3::<f32>(x[0], x[1], x[2]);
     let c = Candidate::lone(
         0,
         Triangle::new(
-            v([108.9849, -522.2937, -370.31494]),
-            v([-104.513596, 494.13428, 348.8664]),
-            v([24.47615, -39.66458, -100.728264]),
+            v32([108.9849, -522.2937, -370.31494]),
+            v32([-104.513596, 494.13428, 348.8664]),
+            v32([24.47615, -39.66458, -100.728264]),
         ),
     );
-    let vel = v([-47.696926, 227.34096, 160.76678]);
+    let vel = v32([-47.696926, 227.34096, 160.76678]);
     let hit = sweep_robust(&c, &Vec3::zeros(), &vel, &DetectOptions::default(), None).expect("the edge is entered");
     assert_eq!(hit.feature, Feature::Edge(0), "{hit:?}");
     assert!((hit.t - 0.256).abs() < 0.01, "{hit:?}");
@@ -39,7 +44,8 @@ fn grazing_sweep_along_a_long_edge_whose_end_is_far_enters_it() {
 /// The same miss in a robust move (`f32`, the probe's case 8008 of seed
 /// 11): a unit sphere resting by a wall of three long triangles, pushed
 /// 282 radii nearly along one of their edges in one frame, ended `2.8e-3`
-/// inside.
+/// inside. (The code before F35's fix took another path here and passed;
+/// with F35's fix and without R23a's, this fails.)
 #[test]
 fn robust_push_along_a_long_edge_whose_end_is_far_stays_out() {
     let soup = [
@@ -78,4 +84,29 @@ fn robust_push_along_a_long_edge_whose_end_is_far_stays_out() {
         assert!(depth <= 0.0, "frame {k}: {depth:e} inside at {p:?} (from {before:?})");
     }
     assert!(p.y > 400.0, "the pushes slide the body along the wall: {p:?}");
+}
+
+/// R23b: a unit sphere overlapping (0.91 from) the inactive edge 0 of a
+/// flat cap 80 radii long in `f32`, centred over the face, moving 10 radii
+/// along the edge and sinking into the face by `2.5e-5`. An inactive edge
+/// over the face is judged with the face normal, which, computed from the
+/// two shorter edges, is off along the long edge by `u` times its tilt
+/// (`-5e-6` here): F35's first fix judged the approach of an overlapping
+/// edge from `-sep . vel` alone, read the motion along the edge as
+/// receding and reported nothing (a coplanar neighbour caught it in a
+/// world). Only the motion across the edge's line counts again.
+#[test]
+fn overlapped_inactive_edge_of_a_flat_cap_sunk_into_while_sliding_along_it_is_met() {
+    let (a, b, c) =
+        ([1.9420174, 0.29264745, -0.5410054], [57.699562, 53.34715, -64.38704], [29.73931, 26.840164, -32.518337]);
+    // Its neighbour across edge 0 (`a`-`b`), coplanar: the edge is internal.
+    let mirror = [a[0] + b[0] - c[0], a[1] + b[1] - c[1], a[2] + b[2] - c[2]];
+    let mesh = TriangleMesh::new(vec![a, b, c, mirror], vec![[0, 1, 2], [1, 0, 3]]).unwrap();
+    let active = mesh.active(0);
+    assert!(!active.edge(0), "edge 0 must be internal");
+    let cap = Candidate::new(0, Triangle::new(v32(a), v32(b), v32(c)), active);
+    let base = v32([29.759365, 27.5404, -31.918947]);
+    let vel = v32([-5.5757504, -5.305471, 6.3845897]);
+    let hit = sweep_robust(&cap, &base, &vel, &DetectOptions::default(), None).expect("met at the start");
+    assert!(hit.t == 0.0 && hit.started_overlapping, "{hit:?}");
 }
