@@ -429,9 +429,22 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
         let n = hit.normal.clone();
         frame.met.push(hit.triangle);
         frame.record(hit, n.clone());
-        frame.planes.push(n);
+        frame.planes.push(n.clone());
         time_left *= T::one() - t_move;
         remaining = project_onto_cone(&(&w * time_left.clone()), &frame.planes, opts);
+        // The cone admits a displacement that approaches a plane by up to
+        // `feasible_ulps * u` of its length, but the next sweep meets the
+        // plane just hit again once it is approached by more than the
+        // graze share (`touch_ulps * u`, `grazes_met`): a displacement
+        // between the two met it sweep after sweep without moving, to the
+        // iteration cap (a directed probe: a unit sphere on an `f32`
+        // floor pushed 100 radii along it and `3.5e-4` into it stayed
+        // put; bowls of shallow faces alike). It keeps none of its
+        // approach to the plane just hit.
+        let approach = dot(&remaining, &n);
+        if approach < zero {
+            remaining -= &n * approach;
+        }
     }
     frame.trace.stop = StopReason::IterationCap;
     settle(frame, p, opts)

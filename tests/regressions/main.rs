@@ -14,5 +14,6 @@ mod respond_embedded;
 mod respond_far_origin;
 mod respond_huge_wall_slots;
 mod respond_parallel_planes;
+mod respond_shallow_climbs;
 mod respond_shallow_folds;
 mod world_reach;
