@@ -33,7 +33,9 @@
 //!    keeping the closest admissible candidate (zero if none: a corner).
 //!    Planes the motion leaves do not constrain; a pair whose crease is
 //!    shorter than `parallel_ulps * u` (parallel or coplanar planes) is
-//!    never normalised or used.
+//!    never normalised or used. The projection then keeps none of its
+//!    approach to the plane just hit (the cone admits `feasible_ulps * u`
+//!    of it, more than the graze share of step 5).
 //! 5. Repeat with the projected displacement. A triangle already met in
 //!    this pass and touched again at the start of a sweep is skipped by
 //!    the next sweep when the displacement approaches it by no more than
