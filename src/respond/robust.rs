@@ -1037,7 +1037,14 @@ fn least_push<T: Real>(limits: &[(T, Vec3<T>)], opts: &RobustOptions) -> Option<
         consider(ni * bi.clone(), bi.abs());
         for (j, (bj, nj)) in limits.iter().enumerate().skip(i + 1) {
             let c = dot(ni, nj);
-            let det = T::one() - c.clone() * &c;
+            // `sin^2` of the pair's angle from their crease (`crease`),
+            // not `1 - c^2`: for two normals equal up to rounding `c`
+            // can round to one ulp below 1, and `1 - c^2` to `2 u`, which
+            // passed the parallel test and gave coefficients of `1 / u`
+            // whose rounding noise, within the tolerance they widen,
+            // pushed a body out of a floor the wrong way, into it (fuzz
+            // finding F37).
+            let det = norm_squared(&crease(ni, nj));
             if det > min_sin2 {
                 let a = (bi.clone() - c.clone() * bj) / det.clone();
                 let b = (bj.clone() - c * bi) / det;
@@ -1060,6 +1067,34 @@ fn least_push<T: Real>(limits: &[(T, Vec3<T>)], opts: &RobustOptions) -> Option<
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Fuzz finding F37 (twenty-third session, `move_robust`, `f32`): the
+    /// limits of a still body touching, from below, a floor of coincident
+    /// triangles beside planes half a degree off it. Every limit asks for
+    /// a push down (`-y`); two floor normals equal up to rounding made
+    /// `1 - c^2` one ulp's worth, and the pair's solution, rounding noise
+    /// `1.5e-5` long pointing up, was accepted within the tolerance its
+    /// huge coefficients widened, and pushed the body into the floor.
+    #[test]
+    fn least_push_of_limits_equal_up_to_rounding_meets_them() {
+        let limits: Vec<(f32, Vec3<f32>)> = [
+            (7.688_999e-6, [2.793_968e-9, -1.0, 1.862_645_4e-9]),
+            (7.688_999e-6, [-1.816_079_2e-7, -1.0, 9.126_962e-8]),
+            (-2.884_864_8e-5, [0.008_544_739, -0.999_963_46, 0.0]),
+            (1.478_791_2e-4, [0.0, -1.0, 0.0]),
+            (-3.099_441_5e-6, [0.008_544_739, -0.999_963_46, 0.0]),
+            (-3.099_441_5e-6, [0.008_544_739, -0.999_963_46, 0.0]),
+            (7.688_999e-6, [0.0, -1.0, 0.0]),
+            (-1.026_392e-4, [-0.003_188_387, -0.999_889_7, 0.014_510_738]),
+        ]
+        .into_iter()
+        .map(|(need, n)| (need, Vec3::new(n[0], n[1], n[2])))
+        .collect();
+        let push = least_push(&limits, &RobustOptions::default()).expect("a push down meets them all");
+        for (need, n) in &limits {
+            assert!(dot(n, &push) >= need - 1e-6, "{push:?} misses ({need}, {n:?})");
+        }
+    }
 
     /// A review's finding (twenty-first session): [`least_push`] solves a
     /// pair of limits whose directions differ by rounding noise (its
