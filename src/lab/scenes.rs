@@ -11,7 +11,7 @@
 use super::rng::Rng;
 use crate::Error;
 use crate::world::TriangleMesh;
-use nalgebra::Vector3;
+use nalgebra::{Rotation3, Unit, Vector3};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -82,6 +82,11 @@ pub const BUILTIN: &[(&str, &str, &str)] = &[
         "the paper's Fig. 4: an acute wedge, body pushed into its apex with a free direction along the edge",
     ),
     ("crease", "slope in degrees (30)", "a V-shaped valley; the body pushes down into it and along it"),
+    (
+        "fold",
+        "fold angle in degrees (0.01)",
+        "a shallow valley folded along a slanting line (no axis-aligned normals); the body pushes into it and along it",
+    ),
     ("dead-end", "", "three perpendicular planes (floor and two walls); the body pushes into the corner"),
     ("staircase", "steps (20)", "stairs of 0.15 rise and 0.6 run; a 0.5 sphere walks up with gravity"),
     (
@@ -295,6 +300,27 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             s.start = [2.0 - 3.0 * a.sin(), 2.0 * a.tan() + 3.0 * a.cos(), -20.0];
             s.velocity = [-0.05, -0.1, 0.1];
             s.ideal = Some([0.0, 0.0, 0.1]);
+            s.frames = 300;
+            s
+        }
+        "fold" => {
+            // The crease scene's valley, folded by `a` between the faces'
+            // normals and turned about a slanting axis: the normals then
+            // have no zero or equal components, and their cross product
+            // rounds as it does in a level's geometry (R23c).
+            let half = in_range(1e-4, 20.0, 0.01)?.to_radians() / 2.0;
+            let turn = Rotation3::from_axis_angle(&Unit::new_normalize(Vector3::new(1.0, 2.0, 3.0)), 0.6);
+            let t = |v: [f64; 3]| -> [f64; 3] { (turn * Vector3::from(v)).into() };
+            let h = 20.0 * half.tan();
+            let (left, right) = ([half.sin(), half.cos(), 0.0], [-half.sin(), half.cos(), 0.0]);
+            b.quad(t([-20.0, h, -30.0]), t([-20.0, h, 30.0]), t([0.0, 0.0, 30.0]), t([0.0, 0.0, -30.0]), t(left));
+            b.quad(t([0.0, 0.0, -30.0]), t([0.0, 0.0, 30.0]), t([20.0, h, 30.0]), t([20.0, h, -30.0]), t(right));
+            let mut s = scene(label(0.01), description, b.mesh()?);
+            // Half a radius above the fold, then pushed down into both
+            // faces and along the fold.
+            s.start = t([0.0, 1.5, -20.0]);
+            s.velocity = t([0.0, -0.1, 0.1]);
+            s.ideal = Some(t([0.0, 0.0, 0.1]));
             s.frames = 300;
             s
         }

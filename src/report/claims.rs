@@ -264,11 +264,12 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
         reproduced: rnan == 0 && of("robust").next().is_some(),
         evidence: format!("{rnan} of {} robust runs with NaN frames", of("robust").count()),
     });
-    let rest: Vec<&RunResult> =
-        of("robust").filter(|r| ["corner", "dead-end", "wedge", "crease"].iter().any(|b| is_base(r, b))).collect();
+    let rest: Vec<&RunResult> = of("robust")
+        .filter(|r| ["corner", "dead-end", "wedge", "crease", "fold"].iter().any(|b| is_base(r, b)))
+        .collect();
     claims.push(Claim {
         source: "sweepslide",
-        text: "The robust response does not jitter in corners, wedges, creases and dead ends.",
+        text: "The robust response does not jitter in corners, wedges, creases, folds and dead ends.",
         reproduced: !rest.is_empty() && rest.iter().all(|r| r.jitter <= JITTER_THRESHOLD),
         evidence: worst(rest.iter().copied(), |r| r.jitter, " jitter"),
     });
