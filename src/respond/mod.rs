@@ -189,8 +189,16 @@ pub struct Trace<T: Real> {
     pub stop: StopReason,
     /// The total length (eSpace) of the pushes with which the robust
     /// response moved the body out of geometry it started embedded in
-    /// (zero when it did not); the body's net displacement can be shorter.
+    /// (zero when it did not), the skin's pushes right after them
+    /// included; the body's net displacement can be shorter.
     pub depenetration: f64,
+    /// Whether the robust response could not push a body that started
+    /// embedded out: after its push-out some triangle's computed distance
+    /// was still below 1 (a slot narrower than the body, a closed cavity).
+    /// The move then went on from the best position the push-out measured,
+    /// never deeper than the start. Always `false` for the faithful
+    /// responses, which do not push out.
+    pub embedded: bool,
 }
 
 /// The outcome of [`move_body`].
@@ -355,6 +363,7 @@ pub fn move_body<T: Real>(
         contacts: SmallVec::new(),
         stop: StopReason::ZeroVelocity,
         depenetration: 0.0,
+        embedded: false,
     };
     let moves = [velocity.clone(), gravity.clone()];
     let start_magnitude = espace_magnitude(body, position);
@@ -382,7 +391,7 @@ pub fn move_body<T: Real>(
         if let Some(r) = robust::final_rounding::<T>(start_magnitude, reach.radius.to_f64(), &options.robust) {
             frame.band = T::c(2.0 * r);
         }
-        p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust)?;
+        p = robust::start(&mut frame, p, &options.robust)?;
     }
     for vel in [velocity, gravity] {
         if still(vel) {

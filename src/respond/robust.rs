@@ -766,38 +766,50 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
     nearest
 }
 
-/// The start of a robust move: [`depenetrate`] if the body starts
-/// embedded, then, if it is to move, [`settle`] (the resting contacts for
-/// the first pass). The scan that finds the resting contacts also tells
-/// whether anything is nearer than 1, so a body that starts free costs one
-/// scan.
+/// The start of a robust move, still or moving: [`depenetrate`] if the
+/// body starts embedded, then [`settle`] (the skin, and the resting
+/// contacts for the first pass). The scan that finds the resting contacts
+/// also tells whether anything is nearer than 1, so a body that starts
+/// free costs one scan.
+///
+/// A still body starts as a moving one does: one only checked for an
+/// overlap stayed inside a triangle it overlapped by less than the
+/// rounding of its distance (a directed probe, R24b: `1.2e-4` radii in
+/// `f32` at `5,800` radii from the origin, where the plane test computed
+/// `1.0000153`), which the skin, wider than that rounding, clears.
+///
+/// Every push of the start counts in [`Trace::depenetration`] where the
+/// body started embedded (the skin's pushes after the push-out as well:
+/// the final rounding's bound takes the travel from it, [`land`]), and the
+/// candidates are gathered again when the pushes together pass the
+/// gather's margin. Where the push-out could not clear the body,
+/// [`Trace::embedded`] says so.
 ///
 /// # Errors
 /// As [`Neighbourhood::gather`](crate::detect::Neighbourhood::gather), for
 /// the candidates gathered again after a long push-out.
-pub(crate) fn start<T: Real>(
-    frame: &mut Frame<'_, T>,
-    p: Vec3<T>,
-    moving: bool,
-    opts: &RobustOptions,
-) -> Result<Vec3<T>, Error> {
-    if !moving {
-        return depenetrate(frame, p, opts);
-    }
+pub(crate) fn start<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, opts: &RobustOptions) -> Result<Vec3<T>, Error> {
     let nearest = scan_resting(frame, &p, opts);
-    if nearest.as_ref().is_some_and(|n| n.closest < T::one()) {
-        let p = depenetrate(frame, p, opts)?;
-        return Ok(settle(frame, p, opts));
+    if !nearest.as_ref().is_some_and(|n| n.closest < T::one()) {
+        return Ok(restore_skin(frame, p, nearest, opts));
     }
-    Ok(restore_skin(frame, p, nearest, opts))
+    let (pushed, since_gather) = depenetrate(frame, p, opts)?;
+    let settled = settle(frame, pushed.clone(), opts);
+    let skin = norm(&(&settled - &pushed)).to_f64();
+    frame.trace.depenetration += skin;
+    if since_gather + skin > crate::detect::REACH_MARGIN - 1.0 {
+        frame.regather(&settled)?;
+    }
+    frame.trace.embedded = least_distance(frame, &settled).is_some();
+    Ok(settled)
 }
 
-/// Pushes a body that starts embedded out of the geometry (run at the start
-/// of every robust move), in up to `depenetration_rounds` rounds.
+/// Pushes a body that starts embedded out of the geometry, in up to
+/// `depenetration_rounds` rounds; returns where it ends and how far it
+/// was pushed since the candidates were last gathered.
 ///
-/// A round runs when some triangle is nearer than 1 (checked with the
-/// cheap box and plane tests first: this runs every frame a body is
-/// still) and moves the body by [`shortest_push`] over the limits of every
+/// A round runs while some triangle is nearer than 1 ([`least_distance`])
+/// and moves the body by [`shortest_push`] over the limits of every
 /// triangle within `1 + max_padding` ([`limits_at`]): flat walls are
 /// cleared in one round, a wedge along its bisector (where a push out of
 /// one wall at a time, the method until the nineteenth session, drives the
@@ -805,11 +817,28 @@ pub(crate) fn start<T: Real>(
 /// 0.16 inside after four rounds). A push that takes the body beyond the
 /// margin of the gathered candidates gathers them again before the next
 /// round, so a triangle first within reach after the push counts too.
-fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustOptions) -> Result<Vec3<T>, Error> {
+///
+/// Where the rounds cannot clear the body (a slot narrower than it, a
+/// closed cavity) it ends at the best position measured, the one whose
+/// nearest triangle is farthest, never deeper than it started: the last
+/// round's position ping-ponged between a slot's walls, and a body 0.25
+/// inside a slot of 1.5 radii ended 0.5 inside (a directed probe, R24a).
+fn depenetrate<T: Real>(
+    frame: &mut Frame<'_, T>,
+    mut p: Vec3<T>,
+    opts: &RobustOptions,
+) -> Result<(Vec3<T>, f64), Error> {
     let mut since_gather = 0.0;
     let mut limits = SmallVec::new();
-    for _ in 0..opts.depenetration_rounds {
-        if !overlaps(frame, &p) {
+    // The best position measured: its nearest triangle's distance, the
+    // position, the pushes since the gather then, and the gather's number.
+    let (mut best, mut gathers) = (None::<(T, Vec3<T>, f64, u32)>, 0);
+    for round in 0..=opts.depenetration_rounds {
+        let Some(closest) = least_distance(frame, &p) else { return Ok((p, since_gather)) };
+        if best.as_ref().is_none_or(|b| closest > b.0) {
+            best = Some((closest, p.clone(), since_gather, gathers));
+        }
+        if round == opts.depenetration_rounds {
             break;
         }
         // Clear limits are always complete.
@@ -822,18 +851,36 @@ fn depenetrate<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, opts: &RobustO
         if since_gather > crate::detect::REACH_MARGIN - 1.0 {
             frame.regather(&p)?;
             since_gather = 0.0;
+            gathers += 1;
         }
     }
-    Ok(p)
+    let Some((_, q, since, gathered)) = best else { return Ok((p, since_gather)) };
+    if q == p {
+        return Ok((p, since_gather));
+    }
+    if gathered != gathers {
+        frame.regather(&q)?;
+        return Ok((q, 0.0));
+    }
+    Ok((q, since))
 }
 
-/// Whether some candidate lies nearer than 1 to `p` (an overlap).
-fn overlaps<T: Real>(frame: &Frame<'_, T>, p: &Vec3<T>) -> bool {
+/// The distance from `p` to the nearest candidate nearer than 1 (an
+/// overlap), or `None` if there is none.
+fn least_distance<T: Real>(frame: &Frame<'_, T>, p: &Vec3<T>) -> Option<T> {
     let one = T::one();
-    frame.hood.triangles.iter().any(|c| {
+    let mut least: Option<T> = None;
+    for c in &frame.hood.triangles {
         // A box or plane at distance 1 or more cannot hold an overlap.
-        !beyond(c, p, &one, &one) && norm_squared(&(p - closest_point(c, p).0)) < one
-    })
+        if beyond(c, p, &one, &one) {
+            continue;
+        }
+        let dist_sq = norm_squared(&(p - closest_point(c, p).0));
+        if dist_sq < one && least.as_ref().is_none_or(|l| dist_sq < *l) {
+            least = Some(dist_sq);
+        }
+    }
+    least.map(|d| d.sqrt())
 }
 
 /// Whether candidate `c`'s box or plane lies `reach` or more from `p`

@@ -393,3 +393,89 @@ fn robust_still_body_below_a_floor_is_not_pushed_into_it_f32() {
     let pen = penetration(&world, body.radii(), &m.position).unwrap();
     assert!(pen <= 0.0, "{pen:e} inside at {:?}", f64s(&m.position));
 }
+
+/// Two two-sided 40 x 40 walls `gap` apart (`z = 0` and `z = gap`), in `T`.
+fn slot<T: Real>(gap: f64) -> World<T> {
+    let l = 20.0;
+    let vertices = vec![
+        [-l, -l, 0.0],
+        [l, -l, 0.0],
+        [l, l, 0.0],
+        [-l, l, 0.0],
+        [-l, -l, gap],
+        [l, -l, gap],
+        [l, l, gap],
+        [-l, l, gap],
+    ];
+    let triangles = vec![[0, 1, 2], [0, 2, 3], [4, 6, 5], [4, 7, 6]];
+    World::new(std::sync::Arc::new(sweepslide::world::TriangleMesh::new(vertices, triangles).unwrap())).unwrap()
+}
+
+/// A unit sphere started in a slot narrower than itself, where no free
+/// position exists: it cannot be pushed out, but must never end deeper
+/// than it started. A directed probe (twenty-fourth session, R24a) found
+/// the rounds ping-ponging between the walls (the shortest push over
+/// both limits does not exist, and the deepest limit's alone drives the
+/// body into the other wall) and the body left at the last round's
+/// position: a body 0.25 inside a slot of 1.5 ended 0.5 inside, one 0.7
+/// inside a slot of 1.1 ended 0.9 inside (about a thousand of 6,600
+/// random slots in each precision). The push-out now returns the best
+/// position it measured, and says the body is still embedded.
+fn never_deeper_in_a_slot_narrower_than_the_body<T: Real>() {
+    let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+    for (gap, z) in [(1.5, 0.75), (1.5, 0.6), (1.2, 0.5), (1.1, 0.3), (1.9, 0.5), (0.8, 0.4)] {
+        let world = slot::<T>(gap);
+        let start = v::<T>([0.0, 0.0, z]);
+        let at_start = penetration(&world, body.radii(), &start).unwrap();
+        for vel in [[0.0; 3], [0.01, 0.0, 0.0]] {
+            let m = move_body(&world, &body, &start, &v(vel), None, &MoveOptions::new(Response::Robust)).unwrap();
+            let pen = penetration(&world, body.radii(), &m.position).unwrap();
+            let name = format!("{} slot {gap}, z {z}, by {vel:?}", T::name());
+            assert!(pen <= at_start, "{name}: {pen} inside at {:?}, started {at_start} inside", f64s(&m.position));
+            // (The slot of 0.8 is thinner than the body's radius: the
+            // shortest way out is through a wall, and it is taken.)
+            assert_eq!(m.trace.embedded, pen > 0.0, "{name}: {pen} inside: {:?}", m.trace);
+            // Every push of the start counts in `depenetration` (the
+            // final rounding's bound takes the travel from it).
+            let moved = (0..3).map(|i| (m.position[i].to_f64() - start[i].to_f64()).powi(2)).sum::<f64>().sqrt();
+            assert!(moved <= m.trace.depenetration + 0.01 + 1e-9, "{name}: moved {moved}, {:?}", m.trace);
+        }
+    }
+}
+
+#[test]
+fn robust_never_ends_deeper_in_a_slot_narrower_than_the_body_f32() {
+    never_deeper_in_a_slot_narrower_than_the_body::<f32>();
+}
+
+#[test]
+fn robust_never_ends_deeper_in_a_slot_narrower_than_the_body_f64() {
+    never_deeper_in_a_slot_narrower_than_the_body::<f64>();
+}
+
+/// A still sphere (radius 0.24) started `1.2e-4` radii inside a triangle
+/// about `5,800` radii from the origin, in `f32`: an overlap below the
+/// rounding of the distance there (the plane test computed `1.0000153`,
+/// the closest point `0.999918`). A directed probe (twenty-fourth session,
+/// R24b): a still body was only checked for an overlap, never given the
+/// skin a moving one gets, and stayed inside frame after frame (1,152 of
+/// 57,000 still bodies inside one wall, all by less than `1.6e-4` radii).
+/// A still body now starts its move as a moving one does.
+#[test]
+fn robust_still_body_overlapping_by_less_than_the_rounding_is_pushed_out_f32() {
+    let vertices = vec![
+        [-375.3523515810051, -709.0423966635584, -1073.0833595956083],
+        [-23.85414961134026, -741.8266890460026, -714.6617232333058],
+        [-182.26077599367883, -1114.655769044558, -1299.5459410753567],
+    ];
+    let mesh = sweepslide::world::TriangleMesh::new(vertices, vec![[0, 1, 2]]).unwrap();
+    let world = World::<f32>::new(std::sync::Arc::new(mesh)).unwrap();
+    let body = Ellipsoid::<f32>::sphere(0.2397353519340997).unwrap();
+    let start = v::<f32>([-160.73681483429203, -898.6115585650333, -1039.8778420429978]);
+    let at_start = penetration(&world, body.radii(), &start).unwrap();
+    assert!(at_start > 0.0, "the test must start embedded ({at_start:e})");
+    let m = move_body(&world, &body, &start, &v([0.0; 3]), None, &MoveOptions::new(Response::Robust)).unwrap();
+    let pen = penetration(&world, body.radii(), &m.position).unwrap();
+    assert!(pen <= 0.0, "{pen:e} inside at {:?} (started {at_start:e} inside), trace {:?}", f64s(&m.position), m.trace);
+    assert!(!m.trace.embedded, "{:?}", m.trace);
+}
