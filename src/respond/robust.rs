@@ -1056,12 +1056,13 @@ const DEPENETRATION_LIMITS: usize = 8;
 /// three of its limits hold with equality (in three dimensions at most
 /// three independent ones bind), and is the least-norm point of that
 /// face's affine hull: `n_i need_i` for one, the solution in the span of
-/// `n_i, n_j` (a 2 x 2 Gram system) for two, and Cramer's rule for three.
+/// `n_i, n_j` for two ([`consider_pair`]), and Cramer's rule for three.
 /// Every such point that satisfies all limits is a candidate and the
-/// shortest one is the answer. A candidate `d = sum a_i n_i` is computed
-/// with an error of a few `u sum |a_i|` (large for nearly parallel
-/// limits: in a 2 degree wedge `a_i` is 800 times the overlap), so a limit
-/// counts as satisfied up to `feasible_ulps * u * (max |need| + sum |a_i|)`,
+/// shortest one is the answer. A candidate, a sum of terms (`a_i n_i`, or
+/// [`consider_pair`]'s), is computed with an error of a few `u` times the
+/// sum of its terms' lengths (large for nearly parallel limits: in a 2
+/// degree wedge they are 800 times the overlap), so a limit counts as
+/// satisfied up to `feasible_ulps * u * (max |need| + that sum)`,
 /// relative to the push, not to the body's radius: the needs are a padding
 /// or an overlap, and a tolerance of `u` radii would exceed the padding (a
 /// fuzz input in `f32` found a push towards the floor by `6e-7` radii
@@ -1083,7 +1084,6 @@ fn least_push<T: Real>(limits: &[(T, Vec3<T>)], opts: &RobustOptions) -> Option<
     for (i, (bi, ni)) in limits.iter().enumerate() {
         consider(ni * bi.clone(), bi.abs());
         for (j, (bj, nj)) in limits.iter().enumerate().skip(i + 1) {
-            let c = dot(ni, nj);
             // `sin^2` of the pair's angle from their crease (`crease`),
             // not `1 - c^2`: for two normals equal up to rounding `c`
             // can round to one ulp below 1, and `1 - c^2` to `2 u`, which
@@ -1091,12 +1091,8 @@ fn least_push<T: Real>(limits: &[(T, Vec3<T>)], opts: &RobustOptions) -> Option<
             // whose rounding noise, within the tolerance they widen,
             // pushed a body out of a floor the wrong way, into it (fuzz
             // finding F37).
-            let det = norm_squared(&crease(ni, nj));
-            if det > min_sin2 {
-                let a = (bi.clone() - c.clone() * bj) / det.clone();
-                let b = (bj.clone() - c * bi) / det;
-                let weight = a.abs() + b.abs();
-                consider(ni * a + nj * b, weight);
+            if norm_squared(&crease(ni, nj)) > min_sin2 {
+                consider_pair(ni, bi, nj, bj, &mut consider);
             }
             for (bk, nk) in &limits[j + 1..] {
                 let (jk, ki, ij) = (cross(nj, nk), cross(nk, ni), cross(ni, nj));
@@ -1111,6 +1107,32 @@ fn least_push<T: Real>(limits: &[(T, Vec3<T>)], opts: &RobustOptions) -> Option<
     best.map(|(_, d)| d)
 }
 
+/// The least-norm `d` with `ni . d = bi` and `nj . d = bj` (two limits of
+/// [`least_push`] that are not parallel), passed to `consider` with the
+/// size of its terms, which bounds its rounding.
+///
+/// Solved in the basis of `s = ni + nj` and `t = ni - nj`, whose Gram
+/// matrix is nearly diagonal (`s . t = |ni|^2 - |nj|^2`, zero for unit
+/// normals): `s . d = bi + bj` and `t . d = bi - bj`. The difference `t`
+/// of two nearly parallel normals is nearly exact (as in [`crease`]), so
+/// `|t|^2` is off by `u` relative, where the Gram system in `ni, nj`
+/// divides by `1 - c^2` off by `u` absolute; and the normals' lengths,
+/// one within a few `u` but not exactly, enter through `s . t` rather
+/// than being taken as 1. With the unit-length form, a pair a few
+/// thousandths of a radian apart missed both its limits by fifty times
+/// the tolerance and no push was found (a review, R24d: in about 70% of
+/// 20,000 such pairs in `f64`, 37% before F37).
+fn consider_pair<T: Real>(ni: &Vec3<T>, bi: &T, nj: &Vec3<T>, bj: &T, consider: &mut impl FnMut(Vec3<T>, T)) {
+    let (s, t) = (ni + nj, ni - nj);
+    let (ss, tt, st) = (norm_squared(&s), norm_squared(&t), dot(&s, &t));
+    let (sum, diff) = (bi.clone() + bj, bi.clone() - bj);
+    let det = ss.clone() * &tt - st.clone() * &st;
+    let a = (sum.clone() * &tt - st.clone() * &diff) / det.clone();
+    let b = (diff * &ss - st * sum) / det;
+    let weight = a.abs() * ss.sqrt() + b.abs() * tt.sqrt();
+    consider(s * a + t * b, weight);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1122,6 +1144,26 @@ mod tests {
     /// `1 - c^2` one ulp's worth, and the pair's solution, rounding noise
     /// `1.5e-5` long pointing up, was accepted within the tolerance its
     /// huge coefficients widened, and pushed the body into the floor.
+    /// Two limits `5.5e-3` radians apart with nearly equal needs, from a
+    /// review of F37's fix (R24d): the pair's solution from the unit-length
+    /// Gram system missed both by `8.2e-18` against a tolerance of
+    /// `1.6e-19`, and no push was found.
+    #[test]
+    fn least_push_of_nearly_parallel_limits_meets_both() {
+        let limits: Vec<(f64, Vec3<f64>)> = [
+            (1.1244590213796508e-5, [0.7949812743988114, -0.5653629679806764, -0.2199306431385188]),
+            (1.124435330481498e-5, [0.8001910092431135, -0.5595777137873537, -0.21579418657370297]),
+        ]
+        .into_iter()
+        .map(|(need, n)| (need, Vec3::new(n[0], n[1], n[2])))
+        .collect();
+        let push = least_push(&limits, &RobustOptions::default()).expect("the pair's solution meets both");
+        for (need, n) in &limits {
+            assert!(dot(n, &push) >= need - 1e-18, "{push:?} misses ({need}, {n:?})");
+        }
+        assert!(norm(&push) < 1.2e-5, "{push:?} is not the least push");
+    }
+
     #[test]
     fn least_push_of_limits_equal_up_to_rounding_meets_them() {
         let limits: Vec<(f32, Vec3<f32>)> = [
