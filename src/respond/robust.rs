@@ -412,21 +412,34 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             continue;
         }
         grazed.clear();
-        let pad = padding(frame.start_magnitude, least_s(&p), &p, &remaining, &candidate_e(frame, hit.triangle), opts);
+        let tri = candidate_e(frame, hit.triangle);
+        let pad = padding(frame.start_magnitude, least_s(&p), &p, &remaining, &tri, opts);
         // The gap to the contact along its normal now. Within the resting
         // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
         // out, so rounding cannot make it toggle between neighbouring floats.
         let approach = -dot(&remaining, &hit.normal);
-        let gap_now = hit.t.clone() * approach.clone().max(zero.clone());
+        let gap_now = if hit.t > zero || hit.started_overlapping {
+            hit.t.clone() * approach.clone().max(zero.clone())
+        } else {
+            // A touch at the start: the detection reports every body
+            // within its touching tolerance `touch_ulps * u * s` at
+            // `t = 0`, a gap it does not measure, wider than the padding
+            // at low precisions. Taken as none, a body resting in its band
+            // was pushed a whole padding up, and the next sweep's touch
+            // again (R24c: a sphere sliding on a floor at 8 bits rose by
+            // the padding frame after frame, and fell back every fourth).
+            norm(&(&p - closest_point(&tri, &p).0)) - T::one()
+        };
+        drop(tri);
         let t_move = if approach > zero && gap_now > T::c(2.0) * &pad {
             (hit.t.clone() - pad.clone() / &approach).max(zero.clone())
         } else {
             zero.clone()
         };
         p += &remaining * t_move.clone();
-        let gap = (hit.t.clone() - &t_move) * approach.max(zero.clone());
+        let gap = if t_move > zero { (hit.t.clone() - &t_move) * approach.max(zero.clone()) } else { gap_now };
         if gap < pad.clone() * T::c(0.5) {
-            p = push_out(frame, p, &hit.normal, pad - &gap, &gap, opts);
+            p = push_out(frame, p, &hit.normal, pad - &gap, &gap.clone().max(zero.clone()), opts);
         }
         let n = hit.normal.clone();
         frame.met.push(hit.triangle);
