@@ -613,9 +613,12 @@ fn across<T: Real>(v: &Vec3<T>, e: &Vec3<T>, e2: &T) -> Vec3<T> {
 /// The entry of the unit sphere moving by `vel` into the unit cylinder
 /// around an edge's line (through its nearer end `a`, along `e`):
 /// `m2 t^2 + 2 half_b t + c = 0` is `|e|^2` times the squared distance to
-/// the line less 1, with `m = e x vel`, `k = e x a`, `c = |k|^2 - |e|^2`,
+/// the line less 1, with `m = e x vel`, `k = e x a'`, `c = |k|^2 - |e|^2`,
 /// `half_b = -(m . k)` and the discriminant from Lagrange's identity,
-/// `disc = |e|^2 (|m|^2 - (m . a)^2)` (see [`sweep_robust`]).
+/// `disc = |e|^2 (|m|^2 - (m . a')^2)`, where `a'` is `a` less its
+/// component along `e` (equal in exact arithmetic; the rounded `m`'s
+/// component along `e` then meets no reach along the edge; see
+/// [`sweep_robust`]).
 struct EdgeEntry<T: Real> {
     /// `|e|^2`.
     e2: T,

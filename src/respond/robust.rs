@@ -14,7 +14,9 @@
 //!    Nothing hit: move the whole way, done.
 //! 2. Advance to the hit, stopping `pad` short *along the contact normal*:
 //!    the advance is shortened by `pad / (-w . n)` (capped at the hit); if
-//!    that leaves less than `pad / 2` of gap (a grazing or touching hit) the
+//!    that leaves less than `pad / 2` of gap (a grazing or touching hit;
+//!    the gap of a touch at `t = 0`, which the detection reports for any
+//!    body within its touching tolerance, is measured) the
 //!    body is pushed out along `n` to `pad`, never further than half the
 //!    room to whatever lies behind it (so it centres in a slot narrower than
 //!    `2 + 2 pad` instead of jamming). A body already within the resting
@@ -78,7 +80,10 @@
 //!
 //! A body that starts embedded is first pushed out by the shortest
 //! displacement that clears every triangle within reach (up to
-//! `depenetration_rounds` rounds).
+//! `depenetration_rounds` rounds; where none clears it, it stays at the
+//! best position measured, never deeper, and `Trace::embedded` says so).
+//! A still body starts as a moving one does: pushed out if embedded, its
+//! skin restored.
 
 use super::{Frame, StopReason};
 use crate::detect::{Candidate, DetectOptions, Detection, Hit, closest_point, proximity};
@@ -383,10 +388,11 @@ fn push_out<T: Real>(
 /// One sliding pass from eSpace `p` by eSpace `w`.
 ///
 /// The displacement of every iteration is the *original* `w`, scaled by the
-/// fraction of the frame still left, projected onto all planes met so far.
-/// Projecting the already-projected leftover instead would let a second
-/// plane push the body out of the first one's plane, which is exactly
-/// Fauerby's jitter in obtuse corners.
+/// fraction of the frame still left, projected onto all planes met so far,
+/// less any approach it keeps, within the cone's tolerance, to the plane
+/// just hit (R23d). Projecting the already-projected leftover instead
+/// would let a second plane push the body out of the first one's plane,
+/// which is exactly Fauerby's jitter in obtuse corners.
 pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
     let zero = T::zero();
     let w_len = norm(&w);
