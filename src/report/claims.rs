@@ -220,12 +220,42 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
             _ => "no Linahan runs".into(),
         },
     });
-    let snags: Vec<&RunResult> = of("linahan").filter(|r| r.snag.is_some_and(|s| s < SNAG_THRESHOLD)).collect();
+    // The folds' freezes are stops at a third plane, not snags on edges:
+    // their own claim below.
+    let sliding = |resp: &'static str| of(resp).filter(|r| !is_base(r, "fold"));
+    let snags: Vec<&RunResult> = sliding("linahan").filter(|r| r.snag.is_some_and(|s| s < SNAG_THRESHOLD)).collect();
     claims.push(Claim {
         source: "Linahan 2012, IV (open problem)",
         text: "Linahan's response snags on triangle edges.",
         reproduced: !snags.is_empty(),
-        evidence: smallest_snag(of("linahan"), "runs with an ideal slide"),
+        evidence: smallest_snag(sliding("linahan"), "runs with an ideal slide, the folds left out (next claims)"),
+    });
+    let folds = |resp: &'static str| of(resp).filter(|r| is_base(r, "fold")).filter(hw).collect::<Vec<_>>();
+    let frozen = |r: &&RunResult| r.snag.is_some_and(|s| s < SNAG_THRESHOLD) && r.capped_frames > 0;
+    let faithful: Vec<&RunResult> = folds("fauerby").into_iter().chain(folds("linahan")).collect();
+    let frozen_f32 = |resp: &str| faithful.iter().any(|r| r.response == resp && r.precision == "f32" && frozen(r));
+    claims.push(Claim {
+        source: "sweepslide (lab)",
+        text: "In f32 both faithful responses freeze in a V-shaped valley whose fold is not axis-aligned, where they slide in \
+               f64.",
+        reproduced: frozen_f32("fauerby")
+            && frozen_f32("linahan")
+            && faithful.iter().filter(|r| r.precision == "f64").all(|r| !frozen(r)),
+        evidence: faithful
+            .iter()
+            .map(|r| {
+                format!(
+                    "{} {}: snag ratio {:.3}, {} of {} frames at the cap, {} inside",
+                    r.response,
+                    describe(r),
+                    r.snag.unwrap_or(f64::NAN),
+                    r.capped_frames,
+                    r.frames,
+                    r.penetrating_frames
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("; "),
     });
     let nans: Vec<&RunResult> = all.iter().copied().filter(|r| r.response != "robust" && r.nan_frames > 0).collect();
     claims.push(Claim {

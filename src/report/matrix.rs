@@ -25,9 +25,15 @@ pub const PRECISIONS: [Precision; 6] = [
 pub const DIAL_SCENES: [&str; 3] = ["corner", "wedge", "crease"];
 
 /// Scenes added to the built-ins at their defaults: the extreme wedge and
-/// slot, and scenes far from the origin.
-pub const EXTRA_SCENES: [(&str, [f64; 3]); 4] =
-    [("wedge:1", [0.0; 3]), ("slot:0.0001", [0.0; 3]), ("corner", [1e4, 0.0, 1e4]), ("floor", [1e5, 0.0, 1e5])];
+/// slot, a fold as deep as a valley (where both faithful responses freeze
+/// in `f32`), and scenes far from the origin.
+pub const EXTRA_SCENES: [(&str, [f64; 3]); 5] = [
+    ("wedge:1", [0.0; 3]),
+    ("slot:0.0001", [0.0; 3]),
+    ("fold:5", [0.0; 3]),
+    ("corner", [1e4, 0.0, 1e4]),
+    ("floor", [1e5, 0.0, 1e5]),
+];
 
 /// Which part of the report a run belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
