@@ -314,7 +314,9 @@ fn check_precision<T: Real>(what: &str, v: &Vec3<T>) -> Result<(), Error> {
 ///
 /// Zero velocity and gravity are valid (a body at rest): the position is
 /// returned unchanged except that the robust response still pushes a body
-/// that starts embedded out of the geometry.
+/// that starts embedded out of the geometry, and one closer to a triangle
+/// than half its padding out to its skin where that push restores it (a
+/// body left there by rounding, or placed there).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] for options out of range
@@ -391,7 +393,7 @@ pub fn move_body<T: Real>(
         if let Some(r) = robust::final_rounding::<T>(start_magnitude, reach.radius.to_f64(), &options.robust) {
             frame.band = T::c(2.0 * r);
         }
-        p = robust::start(&mut frame, p, &options.robust)?;
+        p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust)?;
     }
     for vel in [velocity, gravity] {
         if still(vel) {

@@ -15,8 +15,7 @@
 //! 2. Advance to the hit, stopping `pad` short *along the contact normal*:
 //!    the advance is shortened by `pad / (-w . n)` (capped at the hit); if
 //!    that leaves less than `pad / 2` of gap (a grazing or touching hit;
-//!    the gap of a touch at `t = 0`, which the detection reports for any
-//!    body within its touching tolerance, is measured) the
+//!    a touch at `t = 0` counts as no gap) the
 //!    body is pushed out along `n` to `pad`, never further than half the
 //!    room to whatever lies behind it (so it centres in a slot narrower than
 //!    `2 + 2 pad` instead of jamming). A body already within the resting
@@ -418,34 +417,21 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             continue;
         }
         grazed.clear();
-        let tri = candidate_e(frame, hit.triangle);
-        let pad = padding(frame.start_magnitude, least_s(&p), &p, &remaining, &tri, opts);
+        let pad = padding(frame.start_magnitude, least_s(&p), &p, &remaining, &candidate_e(frame, hit.triangle), opts);
         // The gap to the contact along its normal now. Within the resting
         // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
         // out, so rounding cannot make it toggle between neighbouring floats.
         let approach = -dot(&remaining, &hit.normal);
-        let gap_now = if hit.t > zero || hit.started_overlapping {
-            hit.t.clone() * approach.clone().max(zero.clone())
-        } else {
-            // A touch at the start: the detection reports every body
-            // within its touching tolerance `touch_ulps * u * s` at
-            // `t = 0`, a gap it does not measure, wider than the padding
-            // at low precisions. Taken as none, a body resting in its band
-            // was pushed a whole padding up, and the next sweep's touch
-            // again (R24c: a sphere sliding on a floor at 8 bits rose by
-            // the padding frame after frame, and fell back every fourth).
-            norm(&(&p - closest_point(&tri, &p).0)) - T::one()
-        };
-        drop(tri);
+        let gap_now = hit.t.clone() * approach.clone().max(zero.clone());
         let t_move = if approach > zero && gap_now > T::c(2.0) * &pad {
             (hit.t.clone() - pad.clone() / &approach).max(zero.clone())
         } else {
             zero.clone()
         };
         p += &remaining * t_move.clone();
-        let gap = if t_move > zero { (hit.t.clone() - &t_move) * approach.max(zero.clone()) } else { gap_now };
+        let gap = (hit.t.clone() - &t_move) * approach.max(zero.clone());
         if gap < pad.clone() * T::c(0.5) {
-            p = push_out(frame, p, &hit.normal, pad - &gap, &gap.clone().max(zero.clone()), opts);
+            p = push_out(frame, p, &hit.normal, pad - &gap, &gap, opts);
         }
         let n = hit.normal.clone();
         frame.met.push(hit.triangle);
@@ -791,7 +777,8 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
 /// also tells whether anything is nearer than 1, so a body that starts
 /// free costs one scan.
 ///
-/// A still body starts as a moving one does: one only checked for an
+/// A still body starts as a moving one does, but is moved to restore its
+/// skin only where the push restores it: one only checked for an
 /// overlap stayed inside a triangle it overlapped by less than the
 /// rounding of its distance (a directed probe, R24b: `1.2e-4` radii in
 /// `f32` at `5,800` radii from the origin, where the plane test computed
@@ -807,10 +794,24 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
 /// # Errors
 /// As [`Neighbourhood::gather`](crate::detect::Neighbourhood::gather), for
 /// the candidates gathered again after a long push-out.
-pub(crate) fn start<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, opts: &RobustOptions) -> Result<Vec3<T>, Error> {
+pub(crate) fn start<T: Real>(
+    frame: &mut Frame<'_, T>,
+    p: Vec3<T>,
+    moving: bool,
+    opts: &RobustOptions,
+) -> Result<Vec3<T>, Error> {
     let nearest = scan_resting(frame, &p, opts);
     if !nearest.as_ref().is_some_and(|n| n.closest < T::one()) {
-        return Ok(restore_skin(frame, p, nearest, opts));
+        if moving || !nearest.as_ref().is_some_and(Nearest::short) {
+            return Ok(restore_skin(frame, p, nearest, opts));
+        }
+        // A still body moves only where that restores its skin: in a slot
+        // narrower than its walls' paddings the skin cannot be restored,
+        // and each still frame's centring push, rounding noise of one
+        // sign, crept it along by `5e-12` frame after frame (a review).
+        let pushed = restore_skin(frame, p.clone(), nearest, opts);
+        let whole = !scan_resting(frame, &pushed, opts).is_some_and(|n| n.short());
+        return Ok(if whole { pushed } else { p });
     }
     let (pushed, since_gather) = depenetrate(frame, p, opts)?;
     let settled = settle(frame, pushed.clone(), opts);
@@ -1156,13 +1157,6 @@ fn consider_pair<T: Real>(ni: &Vec3<T>, bi: &T, nj: &Vec3<T>, bj: &T, consider: 
 mod tests {
     use super::*;
 
-    /// Fuzz finding F37 (twenty-third session, `move_robust`, `f32`): the
-    /// limits of a still body touching, from below, a floor of coincident
-    /// triangles beside planes half a degree off it. Every limit asks for
-    /// a push down (`-y`); two floor normals equal up to rounding made
-    /// `1 - c^2` one ulp's worth, and the pair's solution, rounding noise
-    /// `1.5e-5` long pointing up, was accepted within the tolerance its
-    /// huge coefficients widened, and pushed the body into the floor.
     /// Two limits `5.5e-3` radians apart with nearly equal needs, from a
     /// review of F37's fix (R24d): the pair's solution from the unit-length
     /// Gram system missed both by `8.2e-18` against a tolerance of
@@ -1183,6 +1177,13 @@ mod tests {
         assert!(norm(&push) < 1.2e-5, "{push:?} is not the least push");
     }
 
+    /// Fuzz finding F37 (twenty-third session, `move_robust`, `f32`): the
+    /// limits of a still body touching, from below, a floor of coincident
+    /// triangles beside planes half a degree off it. Every limit asks for
+    /// a push down (`-y`); two floor normals equal up to rounding made
+    /// `1 - c^2` one ulp's worth, and the pair's solution, rounding noise
+    /// `1.5e-5` long pointing up, was accepted within the tolerance its
+    /// huge coefficients widened, and pushed the body into the floor.
     #[test]
     fn least_push_of_limits_equal_up_to_rounding_meets_them() {
         let limits: Vec<(f32, Vec3<f32>)> = [

@@ -13,7 +13,6 @@ mod respond_ellipsoid_reach;
 mod respond_embedded;
 mod respond_far_origin;
 mod respond_huge_wall_slots;
-mod respond_low_precision;
 mod respond_parallel_planes;
 mod respond_shallow_climbs;
 mod respond_shallow_folds;
