@@ -709,3 +709,25 @@ fn a_finding_run_with_another_response_or_precision_says_how_to_reproduce_it() {
     let same = stderr(&["--response", "linahan", "--precision", "f32"]);
     assert!(!same.contains("records"), "{same}");
 }
+
+/// The random search on a few trials: every finding is what its kind says
+/// (penetration, NaN, jitter), comes with the command that reproduces it,
+/// and none is the robust response's; the faithful ones fail somewhere.
+#[test]
+fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
+    use sweepslide::lab::search::{FailureKind, search};
+    let findings = search(3, 40, 1).unwrap();
+    assert!(findings.iter().any(|f| f.result.response != "robust"), "no finding in 40 trials");
+    for f in &findings {
+        let r = &f.result;
+        assert_ne!(r.response, "robust", "{f:?}");
+        match f.kind {
+            FailureKind::Penetration => assert!(r.penetrating_frames > 0 && f.value > 0.0, "{f:?}"),
+            FailureKind::Nan => assert!(r.nan_frames > 0, "{f:?}"),
+            FailureKind::Jitter => assert!(r.jitter > 1e-3, "{f:?}"),
+        }
+        let base = r.scene.split([':', '@']).next().unwrap();
+        assert!(f.command.starts_with(&format!("sweepslide run --scene {base}")), "{f:?}");
+        assert!(f.command.ends_with(&format!("--response {} --precision {}", r.response, r.precision)), "{f:?}");
+    }
+}

@@ -50,12 +50,13 @@ struct Trial {
 }
 
 fn trial(rng: &mut Rng) -> Trial {
-    let families = ["corner", "wedge", "crease", "slot", "dead-end", "tessellated-floor"];
+    let families = ["corner", "wedge", "crease", "fold", "slot", "dead-end", "tessellated-floor"];
     let family = families[(rng.next_u64() % families.len() as u64) as usize];
     let (spec, rest) = match family {
         "corner" => (format!("corner:{:.2}", rng.range(5.0, 85.0)), true),
         "wedge" => (format!("wedge:{:.3}", 10f64.powf(rng.range(-0.3, 1.3))), false),
         "crease" => (format!("crease:{:.2}", rng.range(2.0, 75.0)), false),
+        "fold" => (format!("fold:{:.3e}", 10f64.powf(rng.range(-3.0, 1.3))), false),
         "slot" => (format!("slot:{:.3e}", 10f64.powf(rng.range(-5.0, 0.0))), false),
         "tessellated-floor" => ("tessellated-floor:12".to_string(), false),
         _ => ("dead-end".to_string(), true),
