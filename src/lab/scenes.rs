@@ -85,7 +85,7 @@ pub const BUILTIN: &[(&str, &str, &str)] = &[
     (
         "fold",
         "fold angle in degrees (0.01)",
-        "a shallow valley folded along a slanting line (no axis-aligned normals); the body pushes into it and along it",
+        "a valley folded along a slanting line (no axis-aligned normals), shallow by default; the body pushes into it and along it",
     ),
     ("dead-end", "", "three perpendicular planes (floor and two walls); the body pushes into the corner"),
     ("staircase", "steps (20)", "stairs of 0.15 rise and 0.6 run; a 0.5 sphere walks up with gravity"),
@@ -304,8 +304,8 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             s
         }
         "fold" => {
-            // The crease scene's valley, folded by `a` between the faces'
-            // normals and turned about a slanting axis: the normals then
+            // The crease scene's valley, its faces' normals the parameter
+            // apart, turned about a slanting axis: the normals then
             // have no zero or equal components, and their cross product
             // rounds as it does in a level's geometry (R23c).
             let half = in_range(1e-4, 20.0, 0.01)?.to_radians() / 2.0;
