@@ -546,6 +546,31 @@ fn the_replay_keeps_the_resting_band_far_from_the_origin() {
     assert_eq!((r.decision_flips, r.plane_flips, r.penetrating_frames), (0, 0, 0));
 }
 
+/// A velocity that is a positive multiple of the scene's keeps the ideal
+/// slide, scaled, so a search finding's command reports the snag ratio it
+/// was found with; any other velocity, or gravity, drops it.
+#[test]
+fn a_scaled_velocity_scales_the_ideal_slide() {
+    use sweepslide::lab::scenes::build;
+    let wedge = build("wedge", 1).unwrap();
+    let [vx, vy, vz] = wedge.velocity;
+    let ideal = wedge.ideal.unwrap();
+    let scaled = wedge.clone().with_velocity([vx * 0.25, vy * 0.25, vz * 0.25]).ideal.unwrap();
+    assert_eq!(scaled, ideal.map(|v| v * 0.25));
+    assert_eq!(wedge.clone().with_velocity([-vx, vy, -vz]).ideal, None, "the opposite direction");
+    assert_eq!(wedge.clone().with_velocity([vx, vy + 1e-3, vz]).ideal, None, "another direction");
+    assert_eq!(wedge.clone().with_velocity([0.0; 3]).ideal, None, "no motion");
+    let falling = sweepslide::lab::scenes::Scene { gravity: [0.0, -0.01, 0.0], ..wedge.clone() };
+    assert_eq!(falling.with_velocity(wedge.velocity).ideal, None, "gravity");
+    let snag = |v: &str| {
+        let out = sweepslide(&["run", "--scene", "wedge", "--frames", "300", &format!("--velocity={v}")]);
+        assert!(out.status.success(), "{out:?}");
+        String::from_utf8(out.stdout).unwrap().lines().find(|l| l.contains("snag ratio")).map(str::to_string)
+    };
+    assert!(snag("-0.05,0,0.01").is_some_and(|l| l.contains("1.000000")), "{:?}", snag("-0.05,0,0.01"));
+    assert_eq!(snag("-0.05,0,0.02"), None);
+}
+
 #[test]
 fn velocity_given_on_the_command_line_replaces_a_cases_recorded_velocities() {
     let dir = std::env::temp_dir().join(format!("sweepslide-velocity-{}", std::process::id()));
@@ -711,11 +736,11 @@ fn a_finding_run_with_another_response_or_precision_says_how_to_reproduce_it() {
 }
 
 /// The random search on a few trials: every finding is what its kind says
-/// (penetration, NaN, jitter), comes with the command that reproduces it,
+/// (penetration, NaN, jitter, freeze), comes with the command that reproduces it,
 /// and none is the robust response's; the faithful ones fail somewhere.
 #[test]
 fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
-    use sweepslide::lab::search::{FailureKind, search};
+    use sweepslide::lab::search::{FREEZE, FailureKind, search};
     let findings = search(3, 40, 1).unwrap();
     assert!(findings.iter().any(|f| f.result.response != "robust"), "no finding in 40 trials");
     for f in &findings {
@@ -725,6 +750,7 @@ fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
             FailureKind::Penetration => assert!(r.penetrating_frames > 0 && f.value > 0.0, "{f:?}"),
             FailureKind::Nan => assert!(r.nan_frames > 0, "{f:?}"),
             FailureKind::Jitter => assert!(r.jitter > 1e-3, "{f:?}"),
+            FailureKind::Freeze => assert!(r.snag.is_some_and(|s| s < FREEZE && s == f.value), "{f:?}"),
         }
         let base = r.scene.split([':', '@']).next().unwrap();
         assert!(f.command.starts_with(&format!("sweepslide run --scene {base}")), "{f:?}");

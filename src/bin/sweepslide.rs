@@ -30,7 +30,8 @@ enum Command {
     /// Run the experiment matrix (or one shard of it) and write the report.
     Report(ReportArgs),
     /// Search random scenes (angles, clearances, speeds, offsets) for
-    /// penetration, NaN and jitter, and print how to reproduce each failure.
+    /// penetration, NaN, jitter and freezes, and print how to reproduce each
+    /// failure.
     Search {
         /// Seed of the search.
         #[arg(long, default_value_t = 1)]
@@ -228,8 +229,7 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
         scene.start = v;
     }
     if let Some(v) = args.velocity {
-        scene.velocity = v;
-        scene.ideal = None;
+        scene = scene.with_velocity(v);
         // A case's recorded velocities give way to the one asked for.
         if matches!(scene.motion, Motion::Scripted { .. }) {
             scene.motion = Motion::Constant;

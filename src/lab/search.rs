@@ -2,6 +2,11 @@
 //! clearances, speeds and offsets, run in `f32` and `f64` through all three
 //! responses. Every failure comes with the `sweepslide run` command that
 //! reproduces it.
+//!
+//! Four kinds are looked for: penetration and NaN positions in every run,
+//! jitter where the ideal is rest (corners, the dead end), freezes where
+//! the ideal is a slide (folds, creases, wedges, slots, the tessellated
+//! floor), each judged by the lab's exact metrics.
 
 use super::rng::Rng;
 use super::runner::{FrameRecord, Precision, RunConfig, RunResult, run_all};
@@ -24,6 +29,12 @@ pub enum FailureKind {
     /// progress than half the path, still there in a run four times as
     /// long).
     Jitter,
+    /// The body stopped where it should slide: in a scene with an ideal
+    /// slide it covered less than [`FREEZE`] of the ideal distance (the
+    /// snag ratio), though each frame's ideal step was at least
+    /// [`FREEZE_STEP`] times the unit roundoff of the position's largest
+    /// coordinate, so the precision could have carried it.
+    Freeze,
 }
 
 /// One failure and how to reproduce it.
@@ -31,7 +42,8 @@ pub enum FailureKind {
 pub struct Finding {
     /// The kind of failure.
     pub kind: FailureKind,
-    /// Its size: the largest penetration, the NaN frame count, or the jitter.
+    /// Its size: the largest penetration, the NaN frame count, the jitter,
+    /// or the snag ratio of a freeze.
     pub value: f64,
     /// The run's metrics.
     pub result: RunResult,
@@ -88,6 +100,24 @@ fn command(t: &Trial, response: Response, precision: Precision) -> String {
 /// Jitter above this (of the speed) in a scene whose ideal is rest counts.
 const JITTER: f64 = 1e-3;
 
+/// A sliding run that covers less than this fraction of the ideal distance
+/// froze.
+pub const FREEZE: f64 = 0.5;
+
+/// A freeze counts only where the ideal step per frame is at least this many
+/// times the unit roundoff of the largest coordinate the run held (start or
+/// end): rounding the position then moves it by at most `sqrt(3) / 64` of
+/// the step per frame, far from the half that a freeze loses.
+pub const FREEZE_STEP: f64 = 64.0;
+
+/// Whether a run's ideal step per frame is long enough for its precision to
+/// carry, from `start` to `end` ([`FREEZE_STEP`]).
+fn carried(ideal: &[f64; 3], start: &[f64; 3], end: &[f64; 3], precision: Precision) -> bool {
+    let step = ideal.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let largest = start.iter().chain(end).fold(0f64, |m, v| m.max(v.abs()));
+    step >= FREEZE_STEP * 2f64.powi(-(precision.bits() as i32)) * largest
+}
+
 /// Whether the last quarter of a trajectory goes back and forth (its net
 /// displacement is less than half its path) rather than progressing, say
 /// along a ramp in steps of the float spacing far from the origin, which the
@@ -121,9 +151,8 @@ pub fn search(seed: u64, trials: usize, jobs: usize) -> Result<Vec<Finding>, Err
     let mut plan = Vec::new();
     for _ in 0..trials {
         let t = trial(&mut rng);
-        let mut scene = build(&t.spec, 1)?.offset(t.offset, true)?;
-        scene.velocity = t.velocity;
-        scene.ideal = None;
+        // The sliding families' ideal slides, scaled with the velocity.
+        let mut scene = build(&t.spec, 1)?.offset(t.offset, true)?.with_velocity(t.velocity);
         scene.frames = t.frames;
         let scene = Arc::new(scene);
         for precision in [Precision::F32, Precision::F64] {
@@ -160,6 +189,12 @@ pub fn search(seed: u64, trials: usize, jobs: usize) -> Result<Vec<Finding>, Err
         }
         if t.rest && r.jitter > JITTER && back_and_forth(&out.frames) && confirm_jitter(cfg)? {
             found(FailureKind::Jitter, r.jitter);
+        }
+        if let (Some(snag), Some(ideal)) = (r.snag, &cfg.scene.ideal)
+            && snag < FREEZE
+            && carried(ideal, &cfg.scene.start, &r.final_position, cfg.precision)
+        {
+            found(FailureKind::Freeze, snag);
         }
     }
     Ok(findings)
