@@ -457,13 +457,13 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
     settle(frame, p, opts)
 }
 
-/// Whether `hit`, from a sweep along `remaining`, is a touch at the start of
-/// a triangle already met in this pass that the motion approaches by no
-/// more than the detection's touching tolerance's share of `reach`, the
-/// length of the displacement still to go before its projection onto the
-/// planes met (`w_len * time_left`: the pass's displacement `w` scaled by
-/// the fraction of the frame left; `touch_ulps * u * reach`; fuzz findings
-/// F24, F32). Not an
+/// Whether `hit`, from a sweep along `remaining`, is a contact (at the
+/// start or later in the sweep) with a triangle already met in this pass
+/// that the motion approaches by no more than the detection's touching
+/// tolerance's share of `reach`, the length of the displacement still to
+/// go before its projection onto the planes met (`w_len * time_left`: the
+/// pass's displacement `w` scaled by the fraction of the frame left;
+/// `touch_ulps * u * reach`; fuzz findings F24, F32; R25a). Not an
 /// overlap: a body already deeper than the touching tolerance must not sink
 /// further (fuzz finding F31).
 ///
@@ -471,18 +471,24 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
 /// the projection's rounding, a few `u` of the unprojected length (of
 /// `reach`, not of the projection: a gravity projected onto a floor tilted
 /// by `4e-8` keeps `4e-8` of its length, and the rounding was `5e-9` of
-/// that, F32), and the detection meets a touch at the start
-/// at any approach (at a grazing angle also through the face test's
-/// window, whose tolerance grows with the speed). Met again, the triangle
-/// adds nothing to the cone, the projection is the same, and so is the next
-/// sweep's answer, until the iteration cap: the body freezes. Skipping it
-/// for the next sweep (from the same position, along the same motion) is
-/// safe: the distance to a convex triangle is convex along the motion, so
-/// over the sweep the body nears it by at most that share, less than the
-/// padding, and the skin is restored at the end of the pass.
+/// that, F32), and the detection meets a touch at any approach (at a
+/// grazing angle also through the face test's window, whose tolerance
+/// grows with the speed). Met again, the triangle adds nothing to the
+/// cone, the projection is the same, and so is the next sweep's answer,
+/// until the iteration cap: the body freezes. A contact later in the sweep
+/// freezes it as well: so grazing an approach leaves no room for a padding
+/// before it, and the body does not advance (R25a: in a slot exactly as
+/// wide as the body, the next triangles of both walls, met where the
+/// body's closest points cross their diagonals at an approach of `1e-16`
+/// from the rounding of an edge normal, were met in turn to the iteration
+/// cap, frame after frame, in `f32` and `f64`). Skipping the triangle for
+/// the next sweep (from the same position, along the same motion) is safe:
+/// the distance to a convex triangle is convex along the motion, at least
+/// 1 before the contact and falling at most at the rate of the approach
+/// after it, so over the sweep the body nears it by at most that share,
+/// less than the padding, and the skin is restored at the end of the pass.
 fn grazes_met<T: Real>(frame: &Frame<'_, T>, hit: &Hit<T>, remaining: &Vec3<T>, w_len: &T, time_left: &T) -> bool {
-    hit.t <= T::zero()
-        && !hit.started_overlapping
+    !hit.started_overlapping
         && frame.met.contains(&hit.triangle)
         && !(-dot(remaining, &hit.normal)
             > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * (w_len.clone() * time_left))

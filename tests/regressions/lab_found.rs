@@ -1,5 +1,6 @@
 //! Failures the lab's random search found on its own (`sweepslide search`,
-//! seeds 1-4, 300 trials each), pinned as scenes. Each test replays the
+//! seeds 1-4, 300 trials each; the freezes with seeds 1-8, 1,200 trials
+//! each), pinned as scenes. Each test replays the
 //! scene and asserts the faithful response's failure and the robust
 //! response's clean run on the very same input.
 
@@ -9,11 +10,10 @@ use sweepslide::lab::{Precision, RunConfig, RunResult, run};
 use sweepslide::respond::Response;
 
 /// The scene `spec` moved by `offset`, pushed by `velocity` for 60 frames,
-/// run with `response` in `precision`.
+/// run with `response` in `precision` (with the scene's ideal slide,
+/// scaled, where `velocity` is a multiple of the scene's).
 fn replay(spec: &str, offset: [f64; 3], velocity: [f64; 3], response: Response, precision: Precision) -> RunResult {
-    let mut scene = build(spec, 1).unwrap().offset(offset, true).unwrap();
-    scene.velocity = velocity;
-    scene.ideal = None;
+    let mut scene = build(spec, 1).unwrap().offset(offset, true).unwrap().with_velocity(velocity);
     scene.frames = 60;
     run(&RunConfig { scene: Arc::new(scene), response, detection: None, precision, seed: 1 }).unwrap().result
 }
@@ -74,6 +74,37 @@ fn fauerby_jitters_in_a_steep_obtuse_corner_where_the_others_rest() {
         for response in [Response::Linahan, Response::Robust] {
             let r = replay("corner:59.05", [0.0; 3], v, response, precision);
             assert!(r.jitter < 1e-6, "{r:?}");
+        }
+    }
+}
+
+/// R25a, found by the search's freeze check: slots exactly as wide as the
+/// body, each wall two triangles split by a diagonal. At the origin the
+/// scene is `slot:0`; at these offsets the clearances round away in the
+/// scenes' `f32` coordinates. Where the body's closest points crossed the
+/// diagonals, each sweep met the next triangle of a wall, at an approach of
+/// about `1e-16` that the rounding of its edge normal left: no room for a
+/// padding along so grazing an approach, so the body did not advance, and
+/// the two walls' triangles were met in turn to the iteration cap, frame
+/// after frame (slide ratios over 60 frames: 0.67 at the origin and 0.67
+/// and 0.72 at the first two offsets, in `f32` and `f64`; 0.95 at the last,
+/// in `f64`). A slot this
+/// narrow is out of range for the padding (F3): the body may end a
+/// rounding error inside a wall (at the origin in `f32`, `7.5e-9` after
+/// the fix), so only the slide is asserted.
+#[test]
+fn robust_slides_through_slots_exactly_as_wide_as_the_body() {
+    let cases = [
+        ("slot:0", [0.0; 3], [9.827107191085815e-2, 0.0, 4.9135538935661316e-1]),
+        ("slot:3.557e-4", [-4.1537e4, 2.6517e4, -1.718e3], [9.827107191085815e-2, 0.0, 4.9135538935661316e-1]),
+        ("slot:1.032e-5", [-6.83e2, -1.417e3, 1.224e3], [9.24215242266655e-2, 0.0, 4.6210765838623047e-1]),
+        ("slot:1.917e-5", [-2.204e3, 3.26e2, 3.183e3], [7.0172019302845e-2, 0.0, 3.508600890636444e-1]),
+    ];
+    for (spec, o, v) in cases {
+        for precision in [Precision::F32, Precision::F64] {
+            let r = replay(spec, o, v, Response::Robust, precision);
+            assert_eq!((r.nan_frames, r.capped_frames), (0, 0), "{r:?}");
+            assert!(r.snag.is_some_and(|s| s > 0.999), "{spec} {precision}: slide ratio {:?}", r.snag);
         }
     }
 }
