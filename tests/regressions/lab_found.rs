@@ -108,3 +108,28 @@ fn robust_slides_through_slots_exactly_as_wide_as_the_body() {
         }
     }
 }
+
+/// Found by the search's freeze check: Fauerby's response returns without
+/// moving when the slid velocity is shorter than `veryCloseDistance`
+/// (`eps = 5e-5` eSpace units here), so a body pushed along a slot's wall
+/// by `3.3e-5` per frame stops at the wall, at every precision (slide ratio
+/// 0.067 over 60 frames in `f64`); twice as fast it slides. Linahan's
+/// response and the robust one slide at both speeds (in `f32` the step is
+/// 17 ulps of the position, and the position's rounding costs Linahan's 2%
+/// of the slide).
+#[test]
+fn fauerby_freezes_when_its_slide_is_shorter_than_very_close_distance() {
+    let slow = [6.61910144117428e-6, 0.0, 3.30955081153661e-5];
+    let fast = slow.map(|v| 2.0 * v);
+    let ratio = |v, response, precision| replay("slot:6.609e-5", [0.0; 3], v, response, precision).snag.unwrap();
+    for precision in [Precision::F32, Precision::F64] {
+        let frozen = ratio(slow, Response::Fauerby, precision);
+        assert!(frozen < 0.1, "{precision}: slide ratio {frozen}");
+        let sliding = ratio(fast, Response::Fauerby, precision);
+        assert!(sliding > 0.999, "{precision}: slide ratio {sliding}");
+        for response in [Response::Linahan, Response::Robust] {
+            let r = ratio(slow, response, precision);
+            assert!(r > 0.95, "{response:?} {precision}: slide ratio {r}");
+        }
+    }
+}
