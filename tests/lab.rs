@@ -741,8 +741,9 @@ fn a_finding_run_with_another_response_or_precision_says_how_to_reproduce_it() {
 #[test]
 fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
     use sweepslide::lab::search::{FREEZE, FailureKind, search};
-    let findings = search(3, 40, 1).unwrap();
+    let findings = search(4, 40, 1).unwrap();
     assert!(findings.iter().any(|f| f.result.response != "robust"), "no finding in 40 trials");
+    assert!(findings.iter().any(|f| f.kind == FailureKind::Freeze), "no freeze in 40 trials");
     for f in &findings {
         let r = &f.result;
         assert_ne!(r.response, "robust", "{f:?}");

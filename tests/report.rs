@@ -162,6 +162,8 @@ fn quick_report_is_complete_and_self_contained() {
     assert!(verdict("Fauerby penetrates only in f32, never in f64."));
     assert!(verdict("The robust response never penetrates"));
     assert!(verdict("In f32 both faithful responses freeze in a V-shaped valley"));
+    assert!(verdict("In f32, away from the origin, on a tilted floor Fauerby's response freezes"));
+    assert!(verdict("The robust response does not snag"));
     let cases = sweepslide::lab::scenes::cases_in(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz"));
     assert!(!cases.is_empty());
     let (info, entries) = matrix(true, &[], &cases);

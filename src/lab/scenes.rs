@@ -72,6 +72,11 @@ pub const BUILTIN: &[(&str, &str, &str)] = &[
         "flat floor of many coplanar triangles with seeded random diagonals; internal edges everywhere",
     ),
     (
+        "tilted-floor",
+        "tilt in degrees (20)",
+        "the tessellated floor, 24 cells per side, turned and tilted about a slanting axis (no coordinate is zero); the body slides along it while pressing in",
+    ),
+    (
         "corner",
         "ramp angle in degrees (45)",
         "the paper's Fig. 2: an obtuse corner between a floor and a ramp, body pushed down into it",
@@ -236,25 +241,40 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             s.frames = 300;
             s
         }
-        "tessellated-floor" => {
-            let n = count(1.0, 1000.0, 40.0)?;
+        "tessellated-floor" | "tilted-floor" => {
+            // The tilted floor: 24 cells per side, turned in its plane and
+            // then tilted about a slanting horizontal axis, so that no
+            // coordinate or normal component is zero: its vertices round
+            // (bending its internal edges by up to `u` of their
+            // coordinates), and so does every slide along it, where the
+            // level floor's are exact.
+            let (n, turn) = if name == "tilted-floor" {
+                let tilt = in_range(0.0, 60.0, 20.0)?.to_radians();
+                let level = Rotation3::from_axis_angle(&Vector3::y_axis(), 0.7);
+                let axis = Unit::new_normalize(Vector3::new(1.0, 0.0, 2.0));
+                (24, Rotation3::from_axis_angle(&axis, tilt) * level)
+            } else {
+                (count(1.0, 1000.0, 40.0)?, Rotation3::identity())
+            };
+            let t = |v: [f64; 3]| -> [f64; 3] { (turn * Vector3::from(v)).into() };
             let half = n as f64 / 2.0;
             for i in 0..n {
                 for k in 0..n {
                     let (x0, z0) = (i as f64 - half, k as f64 - half);
-                    let c = [[x0, 0.0, z0], [x0 + 1.0, 0.0, z0], [x0 + 1.0, 0.0, z0 + 1.0], [x0, 0.0, z0 + 1.0]];
+                    let c = [[x0, 0.0, z0], [x0 + 1.0, 0.0, z0], [x0 + 1.0, 0.0, z0 + 1.0], [x0, 0.0, z0 + 1.0]].map(t);
                     if rng.coin() {
-                        b.quad(c[0], c[1], c[2], c[3], UP);
+                        b.quad(c[0], c[1], c[2], c[3], t(UP));
                     } else {
-                        b.quad(c[1], c[2], c[3], c[0], UP);
+                        b.quad(c[1], c[2], c[3], c[0], t(UP));
                     }
                 }
             }
-            let mut s = scene(label(40.0), description, b.mesh()?);
-            s.start = [-half * 0.8, 1.05, -half * 0.3];
-            s.velocity = [0.1, -0.02, 0.037];
-            s.ideal = Some([0.1, 0.0, 0.037]);
-            s.frames = (n as f64 * 0.6 / 0.1).min(300.0) as usize;
+            let default = if name == "tilted-floor" { 20.0 } else { 40.0 };
+            let mut s = scene(label(default), description, b.mesh()?);
+            s.start = t([-half * 0.8, 1.05, -half * 0.3]);
+            s.velocity = t([0.1, -0.02, 0.037]);
+            s.ideal = Some(t([0.1, 0.0, 0.037]));
+            s.frames = (6 * n).min(300);
             s
         }
         "corner" => {

@@ -6,7 +6,7 @@
 //! Four kinds are looked for: penetration and NaN positions in every run,
 //! jitter where the ideal is rest (corners, the dead end), freezes where
 //! the ideal is a slide (folds, creases, wedges, slots, the tessellated
-//! floor), each judged by the lab's exact metrics.
+//! floors, level and tilted), each judged by the lab's exact metrics.
 
 use super::rng::Rng;
 use super::runner::{FrameRecord, Precision, RunConfig, RunResult, run_all};
@@ -62,7 +62,7 @@ struct Trial {
 }
 
 fn trial(rng: &mut Rng) -> Trial {
-    let families = ["corner", "wedge", "crease", "fold", "slot", "dead-end", "tessellated-floor"];
+    let families = ["corner", "wedge", "crease", "fold", "slot", "dead-end", "tessellated-floor", "tilted-floor"];
     let family = families[(rng.next_u64() % families.len() as u64) as usize];
     let (spec, rest) = match family {
         "corner" => (format!("corner:{:.2}", rng.range(5.0, 85.0)), true),
@@ -71,6 +71,7 @@ fn trial(rng: &mut Rng) -> Trial {
         "fold" => (format!("fold:{:.3e}", 10f64.powf(rng.range(-3.0, 1.3))), false),
         "slot" => (format!("slot:{:.3e}", 10f64.powf(rng.range(-5.0, 0.0))), false),
         "tessellated-floor" => ("tessellated-floor:12".to_string(), false),
+        "tilted-floor" => (format!("tilted-floor:{:.2}", rng.range(1.0, 60.0)), false),
         _ => ("dead-end".to_string(), true),
     };
     let scene = build(&spec, 1).expect("search specs are valid");

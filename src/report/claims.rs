@@ -257,6 +257,47 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
             .collect::<Vec<_>>()
             .join("; "),
     });
+    // A tilted plane away from the origin: no coordinate is zero, and in
+    // f32 the faithful responses' slides along it, rounded, approach it
+    // again.
+    let tilted: Vec<&RunResult> = all
+        .iter()
+        .copied()
+        .filter(|r| r.response != "robust" && r.scene.starts_with("tilted-floor:") && r.scene.contains('@'))
+        .filter(hw)
+        .collect();
+    let fails = |r: &RunResult| if r.response == "fauerby" { frozen(&r) } else { r.nan_frames > 0 };
+    let in_f32_only = |resp: &str| {
+        let rs: Vec<&&RunResult> = tilted.iter().filter(|r| r.response == resp).collect();
+        rs.iter().any(|r| r.precision == "f32" && fails(r))
+            && rs.iter().any(|r| r.precision == "f64")
+            && rs.iter().filter(|r| r.precision == "f64").all(|r| !fails(r))
+    };
+    claims.push(Claim {
+        source: "sweepslide (lab)",
+        text: "In f32, away from the origin, on a tilted floor Fauerby's response freezes and Linahan's gives NaN, where \
+               both slide in f64.",
+        reproduced: in_f32_only("fauerby") && in_f32_only("linahan"),
+        evidence: if tilted.is_empty() {
+            "no runs on a tilted floor away from the origin".into()
+        } else {
+            tilted
+                .iter()
+                .map(|r| {
+                    format!(
+                        "{} {}: snag ratio {:.3}, {} of {} frames at the cap, {} NaN frames",
+                        r.response,
+                        describe(r),
+                        r.snag.unwrap_or(f64::NAN),
+                        r.capped_frames,
+                        r.frames,
+                        r.nan_frames
+                    )
+                })
+                .collect::<Vec<_>>()
+                .join("; ")
+        },
+    });
     let nans: Vec<&RunResult> = all.iter().copied().filter(|r| r.response != "robust" && r.nan_frames > 0).collect();
     claims.push(Claim {
         source: "ALGORITHMS.md section 8",

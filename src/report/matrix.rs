@@ -26,11 +26,14 @@ pub const DIAL_SCENES: [&str; 3] = ["corner", "wedge", "crease"];
 
 /// Scenes added to the built-ins at their defaults: the extreme wedge and
 /// slot, a fold as deep as a valley (where both faithful responses freeze
-/// in `f32`), and scenes far from the origin.
-pub const EXTRA_SCENES: [(&str, [f64; 3]); 5] = [
+/// in `f32`), and scenes away from the origin (on the tilted floor at
+/// `(1e3, 2e3, -1e3)`, in `f32`, Fauerby's response freezes and Linahan's
+/// gives NaN).
+pub const EXTRA_SCENES: [(&str, [f64; 3]); 6] = [
     ("wedge:1", [0.0; 3]),
     ("slot:0.0001", [0.0; 3]),
     ("fold:5", [0.0; 3]),
+    ("tilted-floor", [1e3, 2e3, -1e3]),
     ("corner", [1e4, 0.0, 1e4]),
     ("floor", [1e5, 0.0, 1e5]),
 ];
@@ -117,7 +120,7 @@ fn seeds_for(seeded: bool, quick: bool) -> Vec<u64> {
 /// Whether a built-in scene depends on its seed.
 fn is_seeded(spec: &str) -> bool {
     let name = spec.split(':').next().unwrap_or(spec);
-    matches!(name, "tessellated-floor" | "terrain" | "soup" | "room")
+    matches!(name, "tessellated-floor" | "tilted-floor" | "terrain" | "soup" | "room")
 }
 
 /// The whole matrix, in its fixed order.

@@ -133,3 +133,29 @@ fn fauerby_freezes_when_its_slide_is_shorter_than_very_close_distance() {
         }
     }
 }
+
+/// The tilted floor (a tessellated floor turned and tilted so that no
+/// coordinate or normal component is zero) at `(1e3, 2e3, -1e3)`,
+/// found with the scene (twenty-fifth session). In `f32` a slide along a
+/// face, rounded, approaches it again: Fauerby's response meets the same
+/// face at `t = 0` to its depth cap frame after frame (142 of the scene's
+/// 144 frames, slide ratio 0.017), and Linahan's second plane is that same
+/// face, whose crease with itself is NaN (142 NaN frames). Both slide in
+/// `f64`; the robust response slides in both.
+#[test]
+fn faithful_responses_fail_on_a_tilted_floor_away_from_the_origin_in_f32_only() {
+    let o = [1e3, 2e3, -1e3];
+    let v = build("tilted-floor", 1).unwrap().velocity;
+    let fauerby = replay("tilted-floor", o, v, Response::Fauerby, Precision::F32);
+    assert!(fauerby.capped_frames > 50 && fauerby.snag.is_some_and(|s| s < 0.1), "{fauerby:?}");
+    let linahan = replay("tilted-floor", o, v, Response::Linahan, Precision::F32);
+    assert!(linahan.nan_frames > 50, "{linahan:?}");
+    for response in Response::ALL {
+        let r = replay("tilted-floor", o, v, response, Precision::F64);
+        assert_eq!((r.capped_frames, r.nan_frames), (0, 0), "{r:?}");
+        assert!(r.snag.is_some_and(|s| s > 0.999), "{r:?}");
+    }
+    let robust = replay("tilted-floor", o, v, Response::Robust, Precision::F32);
+    assert_clean(&robust);
+    assert!(robust.snag.is_some_and(|s| s > 0.999), "{robust:?}");
+}
