@@ -242,7 +242,7 @@ fn sweepslide(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_sweepslide")).args(args).output().expect("the CLI runs")
 }
 
-const CONTRACT: [&str; 17] = [
+const CONTRACT: [&str; 18] = [
     "scene",
     "response",
     "detection",
@@ -257,6 +257,7 @@ const CONTRACT: [&str; 17] = [
     "max_pass_iterations",
     "mean_iterations",
     "nan_frames",
+    "embedded_frames",
     "decision_flips",
     "final_position",
     "ns_per_move",
@@ -293,6 +294,7 @@ fn run_json_has_the_contract_fields_for_every_scene_response_and_hardware_precis
                 if response == "robust" {
                     assert_eq!(v["penetrating_frames"], 0, "{scene} {precision}");
                     assert_eq!(v["nan_frames"], 0, "{scene} {precision}");
+                    assert_eq!(v["embedded_frames"], 0, "{scene} {precision}");
                 }
             }
         }
@@ -372,7 +374,47 @@ fn trace_csv_has_one_row_per_frame() {
     assert!(out.status.success());
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(text.lines().count(), 13);
-    assert!(text.starts_with("frame,x,y,z,penetration,from_behind,iterations,stop,flip"));
+    assert!(text.starts_with("frame,x,y,z,penetration,from_behind,iterations,stop,flip,embedded\n"));
+}
+
+/// A body of radius 1.2 in a slot 2.01 wide has no free position: the
+/// robust response says, frame by frame, that it could not push the body
+/// out (`Trace::embedded`), in the run's metrics, its frames, the CLI's
+/// summary and the trace; the same body in a slot it fits, and the
+/// faithful responses, which never push out, count none.
+#[test]
+fn runs_count_the_frames_the_robust_response_could_not_push_out_of() {
+    let slot = sweepslide::lab::scenes::build("slot:0.01", 1).unwrap();
+    let embedded = |radius: f64, response| {
+        let scene = Arc::new(Scene { radii: [radius; 3], frames: 10, ..slot.clone() });
+        run(&RunConfig { scene, response, detection: None, precision: Precision::F64, seed: 1 }).unwrap()
+    };
+    let stuck = embedded(1.2, Response::Robust);
+    assert_eq!(stuck.result.embedded_frames, 10, "{:?}", stuck.result);
+    assert!(stuck.frames.iter().all(|f| f.embedded));
+    assert!(stuck.result.max_penetration > 0.19, "{:?}", stuck.result);
+    assert_eq!(embedded(1.0, Response::Robust).result.embedded_frames, 0);
+    for response in [Response::Fauerby, Response::Linahan] {
+        assert_eq!(embedded(1.2, response).result.embedded_frames, 0, "{response:?}");
+    }
+    let dir = std::env::temp_dir().join(format!("sweepslide-embedded-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("t.csv");
+    let out = sweepslide(&[
+        "run",
+        "--scene",
+        "slot:0.01",
+        "--radius",
+        "1.2",
+        "--frames",
+        "3",
+        "--trace",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("embedded      3 frame(s)"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.lines().skip(1).all(|l| l.ends_with(",true")), "{text}");
 }
 
 #[test]

@@ -286,13 +286,22 @@ fn warn_skipped(scene: &Scene, what: &str) {
 }
 
 fn write_trace(path: &std::path::Path, out: &RunOutput) -> Result<(), Error> {
-    let mut csv = String::from("frame,x,y,z,penetration,from_behind,iterations,stop,flip\n");
+    let mut csv = String::from("frame,x,y,z,penetration,from_behind,iterations,stop,flip,embedded\n");
     for f in &out.frames {
         let pen = f.penetration.map_or(String::new(), |p| format!("{p:e}"));
         let stop = format!("{:?}", f.stop);
         csv += &format!(
-            "{},{:e},{:e},{:e},{},{},{},{},{}\n",
-            f.frame, f.position[0], f.position[1], f.position[2], pen, f.from_behind, f.iterations, stop, f.flip
+            "{},{:e},{:e},{:e},{},{},{},{},{},{}\n",
+            f.frame,
+            f.position[0],
+            f.position[1],
+            f.position[2],
+            pen,
+            f.from_behind,
+            f.iterations,
+            stop,
+            f.flip,
+            f.embedded
         );
     }
     std::fs::write(path, csv).map_err(|e| Error::Io { path: path.to_path_buf(), message: e.to_string() })
@@ -397,6 +406,12 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
             r.capped_frames
         );
         out!("  NaN frames    {}", r.nan_frames);
+        if r.embedded_frames > 0 {
+            out!(
+                "  embedded      {} frame(s) began inside geometry the body could not be pushed out of (moved on from the best position measured)",
+                r.embedded_frames
+            );
+        }
         out!("  decision flips vs mpfr256: {} ({} with a different sliding plane)", r.decision_flips, r.plane_flips);
         if let Some(s) = r.snag {
             out!("  snag ratio    {s:.6} (1 = ideal slide)");

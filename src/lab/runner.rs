@@ -143,6 +143,14 @@ pub struct RunResult {
     /// Frames whose position was NaN or infinite (the run stops at the
     /// first; the rest of the frames count too).
     pub nan_frames: usize,
+    /// Frames the robust response began inside geometry it could not push
+    /// the body out of ([`crate::respond::Trace::embedded`]: a slot
+    /// narrower than the body, a closed cavity); the move went on from the
+    /// best position the push-out measured. Zero for the faithful
+    /// responses, which do not push out (zero in `runs.json` files written
+    /// before the count existed).
+    #[serde(default)]
+    pub embedded_frames: usize,
     /// Frames whose contact decisions (hit or not, triangle, feature)
     /// differ from the same frame replayed in `Mpfr<256>` from the same
     /// start.
@@ -210,6 +218,10 @@ pub struct FrameRecord {
     pub stop: StopReason,
     /// Whether the decisions differed from the `Mpfr<256>` replay.
     pub flip: bool,
+    /// Whether the robust response could not push the body out of the
+    /// geometry it began the frame in ([`RunResult::embedded_frames`]).
+    #[serde(default)]
+    pub embedded: bool,
 }
 
 /// A run's metrics and its frames.
@@ -319,6 +331,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
     // entered each from behind.
     let mut inside: Vec<(u32, bool)> = Vec::new();
     let (mut capped, mut flips, mut plane_flips, mut nan_frames) = (0usize, 0usize, 0usize, 0usize);
+    let mut embedded = 0usize;
     let mut moves = 0usize;
     for k in 0..frames {
         let v = steering.next(scene);
@@ -342,6 +355,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         max_iterations = max_iterations.max(m.trace.iterations);
         max_pass = max_pass.max(m.trace.pass_iterations);
         capped += usize::from(is_capped(m.trace.stop));
+        embedded += usize::from(m.trace.embedded);
         let pen = if finite { penetration(&world, body.radii(), &m.position) } else { None };
         let mut from_behind = false;
         if let Some(d) = pen.filter(|d| *d > 0.0) {
@@ -380,6 +394,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
             iterations: m.trace.iterations,
             stop: m.trace.stop,
             flip,
+            embedded: m.trace.embedded,
         });
         p = m.position;
         positions.push(p.clone());
@@ -429,6 +444,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         mean_iterations: iterations_sum as f64 / moves.max(1) as f64,
         capped_frames: capped,
         nan_frames,
+        embedded_frames: embedded,
         decision_flips: flips,
         plane_flips,
         final_position: [0, 1, 2].map(|i| p[i].to_f64()),

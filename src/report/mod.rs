@@ -191,7 +191,7 @@ pub fn render(dir: &Path, runs: &Runs, elapsed_s: Option<f64>) -> Result<Vec<Pat
 
 fn csv(lines: &[ResultLine<'_>]) -> String {
     let mut out = String::from(
-        "index,group,scene,response,detection,precision,seed,frames,max_penetration,penetrating_frames,back_face_frames,max_front_penetration,jitter,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,decision_flips,plane_flips,snag,final_x,final_y,final_z,ns_per_move,degenerate_triangles\n",
+        "index,group,scene,response,detection,precision,seed,frames,max_penetration,penetrating_frames,back_face_frames,max_front_penetration,jitter,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,embedded_frames,decision_flips,plane_flips,snag,final_x,final_y,final_z,ns_per_move,degenerate_triangles\n",
     );
     for l in lines {
         let r = l.result;
@@ -202,7 +202,7 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
         let snag = r.snag.map_or(String::new(), |s| format!("{s:e}"));
         let [x, y, z] = r.final_position;
         out += &format!(
-            "{},{group},\"{}\",{},{},{},{},{},{:e},{},{},{:e},{:e},{},{},{},{},{},{},{},{snag},{x:e},{y:e},{z:e},{:.1},{}\n",
+            "{},{group},\"{}\",{},{},{},{},{},{:e},{},{},{:e},{:e},{},{},{},{},{},{},{},{},{snag},{x:e},{y:e},{z:e},{:.1},{}\n",
             l.index,
             // A quoted CSV field doubles its quotes (a mesh's file name may
             // hold one).
@@ -222,6 +222,7 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
             r.mean_iterations,
             r.capped_frames,
             r.nan_frames,
+            r.embedded_frames,
             r.decision_flips,
             r.plane_flips,
             r.ns_per_move,
