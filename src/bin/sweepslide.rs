@@ -228,15 +228,19 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
     if let Some(v) = args.start {
         scene.start = v;
     }
+    if let Some(v) = args.gravity {
+        scene.gravity = v;
+        // The scene's ideal slide is that of its push alone.
+        if v != [0.0; 3] {
+            scene.ideal = None;
+        }
+    }
     if let Some(v) = args.velocity {
-        scene = scene.with_velocity(v);
         // A case's recorded velocities give way to the one asked for.
         if matches!(scene.motion, Motion::Scripted { .. }) {
             scene.motion = Motion::Constant;
         }
-    }
-    if let Some(v) = args.gravity {
-        scene.gravity = v;
+        scene = scene.with_velocity(v);
     }
     if let Some(r) = args.radius {
         scene.radii = [r; 3];

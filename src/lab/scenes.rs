@@ -74,7 +74,7 @@ pub const BUILTIN: &[(&str, &str, &str)] = &[
     (
         "tilted-floor",
         "tilt in degrees (20)",
-        "the tessellated floor, 24 cells per side, turned and tilted about a slanting axis (no coordinate is zero); the body slides along it while pressing in",
+        "the tessellated floor, 24 cells per side, turned and tilted about a slanting axis (tilted at all, no coordinate is zero); the body slides along it while pressing in",
     ),
     (
         "corner",

@@ -81,7 +81,8 @@ fn trial(rng: &mut Rng) -> Trial {
         [0.0; 3]
     } else {
         let m = 10f64.powf(rng.range(1.0, 5.0));
-        [rng.range(-m, m), rng.range(-m, m), rng.range(-m, m)].map(|x| x.round())
+        // `+ 0.0` turns a rounded `-0` into `0` (`-0e0` in the command).
+        [rng.range(-m, m), rng.range(-m, m), rng.range(-m, m)].map(|x| x.round() + 0.0)
     };
     Trial { spec, offset, velocity: velocity.map(|v| v as f32 as f64), frames: 60, rest }
 }
@@ -114,6 +115,11 @@ pub const FREEZE_STEP: f64 = 64.0;
 /// Whether a run's ideal step per frame is long enough for its precision to
 /// carry, from `start` to `end` ([`FREEZE_STEP`]).
 fn carried(ideal: &[f64; 3], start: &[f64; 3], end: &[f64; 3], precision: Precision) -> bool {
+    // (A run that ends at NaN has no slide ratio; `f64::max` below would
+    // pass over a NaN.)
+    if !end.iter().all(|v| v.is_finite()) {
+        return false;
+    }
     let step = ideal.iter().map(|v| v * v).sum::<f64>().sqrt();
     let largest = start.iter().chain(end).fold(0f64, |m, v| m.max(v.abs()));
     step >= FREEZE_STEP * 2f64.powi(-(precision.bits() as i32)) * largest

@@ -232,6 +232,7 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
     });
     let folds = |resp: &'static str| of(resp).filter(|r| is_base(r, "fold")).filter(hw).collect::<Vec<_>>();
     let frozen = |r: &&RunResult| r.snag.is_some_and(|s| s < SNAG_THRESHOLD) && r.capped_frames > 0;
+    let slides = |r: &&RunResult| r.snag.is_some_and(|s| s >= SNAG_THRESHOLD);
     let faithful: Vec<&RunResult> = folds("fauerby").into_iter().chain(folds("linahan")).collect();
     let frozen_f32 = |resp: &str| faithful.iter().any(|r| r.response == resp && r.precision == "f32" && frozen(r));
     claims.push(Claim {
@@ -240,7 +241,7 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
                f64.",
         reproduced: frozen_f32("fauerby")
             && frozen_f32("linahan")
-            && faithful.iter().filter(|r| r.precision == "f64").all(|r| !frozen(r)),
+            && faithful.iter().filter(|r| r.precision == "f64").all(&slides),
         evidence: faithful
             .iter()
             .map(|r| {
@@ -271,7 +272,7 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
         let rs: Vec<&&RunResult> = tilted.iter().filter(|r| r.response == resp).collect();
         rs.iter().any(|r| r.precision == "f32" && fails(r))
             && rs.iter().any(|r| r.precision == "f64")
-            && rs.iter().filter(|r| r.precision == "f64").all(|r| !fails(r))
+            && rs.iter().filter(|r| r.precision == "f64").all(|r| slides(r))
     };
     claims.push(Claim {
         source: "sweepslide (lab)",

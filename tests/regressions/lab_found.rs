@@ -138,10 +138,11 @@ fn fauerby_freezes_when_its_slide_is_shorter_than_very_close_distance() {
 /// coordinate or normal component is zero) at `(1e3, 2e3, -1e3)`,
 /// found with the scene (twenty-fifth session). In `f32` a slide along a
 /// face, rounded, approaches it again: Fauerby's response meets the same
-/// face at `t = 0` to its depth cap frame after frame (142 of the scene's
-/// 144 frames, slide ratio 0.017), and Linahan's second plane is that same
-/// face, whose crease with itself is NaN (142 NaN frames). Both slide in
-/// `f64`; the robust response slides in both.
+/// face at `t = 0` to its depth cap frame after frame (over the scene's
+/// 144 frames: 142 capped, slide ratio 0.017; over the 60 replayed here,
+/// more than 50), and Linahan's second plane is that same face, whose
+/// crease with itself is NaN (142 NaN frames of 144). Both slide in `f64`;
+/// the robust response slides in both.
 #[test]
 fn faithful_responses_fail_on_a_tilted_floor_away_from_the_origin_in_f32_only() {
     let o = [1e3, 2e3, -1e3];
