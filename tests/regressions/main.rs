@@ -12,6 +12,7 @@ mod respond_back_face;
 mod respond_ellipsoid_reach;
 mod respond_embedded;
 mod respond_far_origin;
+mod respond_hard_pushes;
 mod respond_huge_wall_slots;
 mod respond_parallel_planes;
 mod respond_shallow_climbs;
