@@ -76,6 +76,19 @@ fn left_out(nan_runs: usize) -> String {
     }
 }
 
+/// One run's slide ratio and frames at the cap, then `more` (what else
+/// the claim weighs), for the evidence of the freeze claims.
+fn slide_evidence(r: &RunResult, more: &str) -> String {
+    format!(
+        "{} {}: snag ratio {:.3}, {} of {} frames at the cap, {more}",
+        r.response,
+        describe(r),
+        r.snag.unwrap_or(f64::NAN),
+        r.capped_frames,
+        r.frames
+    )
+}
+
 fn is_base(r: &RunResult, base: &str) -> bool {
     r.scene.split(':').next() == Some(base) && !r.scene.contains('@')
 }
@@ -244,17 +257,7 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
             && faithful.iter().filter(|r| r.precision == "f64").all(&slides),
         evidence: faithful
             .iter()
-            .map(|r| {
-                format!(
-                    "{} {}: snag ratio {:.3}, {} of {} frames at the cap, {} inside",
-                    r.response,
-                    describe(r),
-                    r.snag.unwrap_or(f64::NAN),
-                    r.capped_frames,
-                    r.frames,
-                    r.penetrating_frames
-                )
-            })
+            .map(|r| slide_evidence(r, &format!("{} inside", r.penetrating_frames)))
             .collect::<Vec<_>>()
             .join("; "),
     });
@@ -284,17 +287,7 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
         } else {
             tilted
                 .iter()
-                .map(|r| {
-                    format!(
-                        "{} {}: snag ratio {:.3}, {} of {} frames at the cap, {} NaN frames",
-                        r.response,
-                        describe(r),
-                        r.snag.unwrap_or(f64::NAN),
-                        r.capped_frames,
-                        r.frames,
-                        r.nan_frames
-                    )
-                })
+                .map(|r| slide_evidence(r, &format!("{} NaN frames", r.nan_frames)))
                 .collect::<Vec<_>>()
                 .join("; ")
         },
