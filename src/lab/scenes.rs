@@ -248,13 +248,13 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             // (bending its internal edges by up to `u` of their
             // coordinates), and so does every slide along it, where the
             // level floor's are exact.
-            let (n, turn) = if name == "tilted-floor" {
+            let (n, turn, default) = if name == "tilted-floor" {
                 let tilt = in_range(0.0, 60.0, 20.0)?.to_radians();
                 let level = Rotation3::from_axis_angle(&Vector3::y_axis(), 0.7);
                 let axis = Unit::new_normalize(Vector3::new(1.0, 0.0, 2.0));
-                (24, Rotation3::from_axis_angle(&axis, tilt) * level)
+                (24, Rotation3::from_axis_angle(&axis, tilt) * level, 20.0)
             } else {
-                (count(1.0, 1000.0, 40.0)?, Rotation3::identity())
+                (count(1.0, 1000.0, 40.0)?, Rotation3::identity(), 40.0)
             };
             let t = |v: [f64; 3]| -> [f64; 3] { (turn * Vector3::from(v)).into() };
             let half = n as f64 / 2.0;
@@ -269,7 +269,6 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
                     }
                 }
             }
-            let default = if name == "tilted-floor" { 20.0 } else { 40.0 };
             let mut s = scene(label(default), description, b.mesh()?);
             s.start = t([-half * 0.8, 1.05, -half * 0.3]);
             s.velocity = t([0.1, -0.02, 0.037]);

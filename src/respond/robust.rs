@@ -502,10 +502,11 @@ fn grazes_met<T: Real>(
     time_left: &T,
     opts: &RobustOptions,
 ) -> bool {
+    if hit.started_overlapping || !frame.met.contains(&hit.triangle) {
+        return false;
+    }
     let approach = -dot(remaining, &hit.normal);
-    !hit.started_overlapping
-        && frame.met.contains(&hit.triangle)
-        && !(approach > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * (w_len.clone() * time_left))
+    !(approach > T::c(frame.detect.touch_ulps * T::unit_roundoff()) * (w_len.clone() * time_left))
         && (hit.t <= T::zero() || {
             // Later in the sweep, the body must also near the triangle by
             // less than half its padding over the rest of the sweep.
