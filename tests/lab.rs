@@ -617,6 +617,27 @@ fn a_scaled_velocity_scales_the_ideal_slide() {
     assert!(!String::from_utf8_lossy(&with_gravity.stdout).contains("snag ratio"), "gravity drops the ideal");
 }
 
+/// Another body than the scene's drops the ideal slide: a sphere three
+/// times as wide does not fit the slot the scene's slides through (it once
+/// reported a snag ratio of 1 there), and an ellipsoid slides in eSpace.
+#[test]
+fn another_body_drops_the_ideal_slide() {
+    use sweepslide::lab::scenes::build;
+    let slot = build("slot:0.1", 1).unwrap();
+    assert!(slot.ideal.is_some());
+    assert_eq!(slot.clone().with_radii(slot.radii).ideal, slot.ideal, "the scene's own body");
+    assert_eq!(slot.clone().with_radii([3.0; 3]).ideal, None, "a wider sphere");
+    assert_eq!(slot.clone().with_radii([1.0, 0.5, 1.0]).ideal, None, "an ellipsoid");
+    let snag = |body: &[&str]| {
+        let out = sweepslide(&[&["run", "--scene", "slot:0.1", "--frames", "20"], body].concat());
+        assert!(out.status.success(), "{out:?}");
+        String::from_utf8(out.stdout).unwrap().contains("snag ratio")
+    };
+    assert!(snag(&["--radius", "1"]));
+    assert!(!snag(&["--radius", "3"]));
+    assert!(!snag(&["--radii=1,0.5,1"]));
+}
+
 #[test]
 fn velocity_given_on_the_command_line_replaces_a_cases_recorded_velocities() {
     let dir = std::env::temp_dir().join(format!("sweepslide-velocity-{}", std::process::id()));
@@ -787,14 +808,17 @@ fn a_finding_run_with_another_response_or_precision_says_how_to_reproduce_it() {
 #[test]
 fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
     use sweepslide::lab::search::{FREEZE, FailureKind, search};
-    // A seed whose 40 trials include a freeze (a change to the families or
-    // their draws may need another).
+    // A seed whose 40 trials include a freeze and an ellipsoid's finding (a
+    // change to the families or their draws may need another).
     let findings = search(4, 40, 1).unwrap();
     assert!(findings.iter().any(|f| f.result.response != "robust"), "no finding in 40 trials");
     assert!(findings.iter().any(|f| f.kind == FailureKind::Freeze), "no freeze in 40 trials");
+    assert!(findings.iter().any(|f| f.command.contains("--radii=")), "no ellipsoid's finding in 40 trials");
     for f in &findings {
         let r = &f.result;
         assert_ne!(r.response, "robust", "{f:?}");
+        // An ellipsoid has no ideal slide to freeze against.
+        assert!(!(f.command.contains("--radii=") && f.kind == FailureKind::Freeze), "{f:?}");
         match f.kind {
             FailureKind::Penetration => assert!(r.penetrating_frames > 0 && f.value > 0.0, "{f:?}"),
             FailureKind::Nan => assert!(r.nan_frames > 0, "{f:?}"),

@@ -242,11 +242,8 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
         }
         scene = scene.with_velocity(v);
     }
-    if let Some(r) = args.radius {
-        scene.radii = [r; 3];
-    }
-    if let Some(r) = args.radii {
-        scene.radii = r;
+    if let Some(r) = args.radius.map(|r| [r; 3]).or(args.radii) {
+        scene = scene.with_radii(r);
     }
     if let Some(o) = args.offset {
         scene = scene.offset(o, built_in)?;

@@ -681,6 +681,17 @@ impl Scene {
         let ideal = self.ideal.filter(|_| keeps).map(|i| i.map(|v| v * k));
         Scene { velocity, ideal, ..self }
     }
+
+    /// The scene with a body of `radii` instead. Its ideal slide is kept
+    /// only where the radii are the scene's own: another body may not fit
+    /// where the scene's slides (a slot, a wedge), and an ellipsoid's
+    /// slide, projected in eSpace as Fauerby's scheme does, is not the
+    /// velocity's projection in world space.
+    #[must_use]
+    pub fn with_radii(self, radii: [f64; 3]) -> Scene {
+        let ideal = self.ideal.filter(|_| radii == self.radii);
+        Scene { radii, ideal, ..self }
+    }
 }
 
 /// The per-run state of a motion program: the steering heading and its

@@ -6,7 +6,9 @@
 //! Four kinds are looked for: penetration and NaN positions in every run,
 //! jitter where the ideal is rest (corners, the dead end), freezes where
 //! the ideal is a slide (folds, creases, wedges, slots, the tessellated
-//! floors, level and tilted), each judged by the lab's exact metrics.
+//! floors, level and tilted), each judged by the lab's exact metrics. One
+//! trial in four moves an ellipsoid instead of the scene's sphere; it has no
+//! ideal slide, so its runs are checked for all but freezes.
 
 use super::rng::Rng;
 use super::runner::{FrameRecord, Precision, RunConfig, RunResult, run_all};
@@ -57,6 +59,8 @@ struct Trial {
     spec: String,
     offset: [f64; 3],
     velocity: [f64; 3],
+    /// An ellipsoid's radii, or `None` for the scene's own sphere.
+    radii: Option<[f64; 3]>,
     frames: usize,
     rest: bool,
 }
@@ -84,13 +88,22 @@ fn trial(rng: &mut Rng) -> Trial {
         // `+ 0.0` turns a rounded `-0` into `0` (`-0e0` in the command).
         [rng.range(-m, m), rng.range(-m, m), rng.range(-m, m)].map(|x| x.round() + 0.0)
     };
-    Trial { spec, offset, velocity: velocity.map(|v| v as f32 as f64), frames: 60, rest }
+    // One trial in four moves an ellipsoid inside the scene's sphere (its
+    // largest radius the sphere's), so it starts outside wherever the
+    // sphere does; its radii have three significant digits, as printed.
+    let radii = (rng.next_u64() % 4 == 0).then(|| {
+        let r = [(); 3].map(|()| 10f64.powf(rng.range(-1.0, 0.0)));
+        let largest = r.iter().fold(0f64, |m, &x| m.max(x));
+        r.map(|x| format!("{:.3e}", scene.radii[0] * x / largest).parse().expect("a formatted float parses"))
+    });
+    Trial { spec, offset, velocity: velocity.map(|v| v as f32 as f64), radii, frames: 60, rest }
 }
 
 fn command(t: &Trial, response: Response, precision: Precision) -> String {
     let v = |a: [f64; 3]| format!("{:e},{:e},{:e}", a[0], a[1], a[2]);
+    let radii = t.radii.map(|r| format!(" --radii={}", v(r))).unwrap_or_default();
     format!(
-        "sweepslide run --scene {} --offset={} --velocity={} --frames {} --response {} --precision {precision}",
+        "sweepslide run --scene {} --offset={} --velocity={}{radii} --frames {} --response {} --precision {precision}",
         t.spec,
         v(t.offset),
         v(t.velocity),
@@ -159,7 +172,11 @@ pub fn search(seed: u64, trials: usize, jobs: usize) -> Result<Vec<Finding>, Err
     for _ in 0..trials {
         let t = trial(&mut rng);
         // The sliding families' ideal slides, scaled with the velocity.
+        // An ellipsoid has no ideal slide (`Scene::with_radii`), so no freeze.
         let mut scene = build(&t.spec, 1)?.offset(t.offset, true)?.with_velocity(t.velocity);
+        if let Some(radii) = t.radii {
+            scene = scene.with_radii(radii);
+        }
         scene.frames = t.frames;
         let scene = Arc::new(scene);
         for precision in [Precision::F32, Precision::F64] {
