@@ -638,6 +638,37 @@ fn another_body_drops_the_ideal_slide() {
     assert!(!snag(&["--radii=1,0.5,1"]));
 }
 
+/// The search's mesh family, on the shared meshes: the robust response
+/// never fails there either, and a mesh finding's command reproduces its
+/// run bit for bit (start, push, gravity, body, offset and walk seed).
+#[test]
+fn random_search_over_meshes_reproduces_its_findings() {
+    use sweepslide::lab::RunResult;
+    use sweepslide::lab::search::search;
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
+    let meshes = sweepslide::lab::scenes::meshes_in(&dir);
+    if meshes.is_empty() {
+        eprintln!("skipped: no meshes in {}", dir.display());
+        return;
+    }
+    // A seed whose 25 trials include a mesh's findings.
+    let findings = search(4, 25, 2, &meshes).unwrap();
+    let on_meshes: Vec<_> = findings.iter().filter(|f| f.command.contains("--mesh ")).collect();
+    assert!(!on_meshes.is_empty(), "no finding on a mesh in 25 trials");
+    // Compared as JSON, where a NaN equals itself; without the timing.
+    let timeless = |r: &RunResult| serde_json::to_string(&RunResult { ns_per_move: 0.0, ..r.clone() }).unwrap();
+    for f in &findings {
+        assert_ne!(f.result.response, "robust", "{f:?}");
+    }
+    for f in on_meshes {
+        let args: Vec<&str> = f.command.split(' ').skip(1).chain(["--json"]).collect();
+        let out = sweepslide(&args);
+        assert!(out.status.success(), "{}: {}", f.command, String::from_utf8_lossy(&out.stderr));
+        let again: RunResult = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(timeless(&again), timeless(&f.result), "{}", f.command);
+    }
+}
+
 #[test]
 fn velocity_given_on_the_command_line_replaces_a_cases_recorded_velocities() {
     let dir = std::env::temp_dir().join(format!("sweepslide-velocity-{}", std::process::id()));
@@ -810,7 +841,7 @@ fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
     use sweepslide::lab::search::{FREEZE, FailureKind, search};
     // A seed whose 40 trials include a freeze and an ellipsoid's finding (a
     // change to the families or their draws may need another).
-    let findings = search(4, 40, 1).unwrap();
+    let findings = search(4, 40, 1, &[]).unwrap();
     assert!(findings.iter().any(|f| f.result.response != "robust"), "no finding in 40 trials");
     assert!(findings.iter().any(|f| f.kind == FailureKind::Freeze), "no freeze in 40 trials");
     assert!(findings.iter().any(|f| f.command.contains("--radii=")), "no ellipsoid's finding in 40 trials");

@@ -45,6 +45,9 @@ enum Command {
         /// Print the findings as JSON lines.
         #[arg(long)]
         json: bool,
+        /// Directory of OBJ meshes: adds a family of trials that move bodies over them.
+        #[arg(long)]
+        meshes: Option<PathBuf>,
     },
     /// Combine shard directories into one report.
     Merge {
@@ -536,8 +539,27 @@ fn merge_command(out: &std::path::Path, shards: &[PathBuf]) -> Result<(), Failur
     Ok(())
 }
 
-fn search_command(seed: u64, trials: usize, jobs: usize, json: bool) -> Result<(), Failure> {
-    let findings = sweepslide::lab::search::search(seed, trials, jobs)?;
+fn search_command(
+    seed: u64,
+    trials: usize,
+    jobs: usize,
+    json: bool,
+    meshes: Option<&std::path::Path>,
+) -> Result<(), Failure> {
+    let meshes = match meshes {
+        None => Vec::new(),
+        Some(dir) => {
+            let found = scenes::meshes_in(dir);
+            if found.is_empty() {
+                return Err(Failure(Error::InvalidArgument {
+                    what: "--meshes".into(),
+                    message: format!("{} is not a directory with .obj files", dir.display()),
+                }));
+            }
+            found
+        }
+    };
+    let findings = sweepslide::lab::search::search(seed, trials, jobs, &meshes)?;
     for f in &findings {
         if json {
             out!("{}", serde_json::to_string(f).expect("findings serialise"));
@@ -564,7 +586,9 @@ fn main() -> ExitCode {
         Command::Scenes => scenes_command(),
         Command::Report(args) => report_command(args),
         Command::Merge { out, shards } => merge_command(out, shards),
-        Command::Search { seed, trials, jobs, json } => search_command(*seed, *trials, *jobs, *json),
+        Command::Search { seed, trials, jobs, json, meshes } => {
+            search_command(*seed, *trials, *jobs, *json, meshes.as_deref())
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
