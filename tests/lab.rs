@@ -706,12 +706,33 @@ fn a_failed_run_leaves_an_existing_trace_file_alone_and_the_input_is_never_the_t
     std::fs::create_dir_all(&dir).unwrap();
     let kept = dir.join("kept.csv");
     std::fs::write(&kept, "precious\n").unwrap();
-    let out = sweepslide(&["run", "--scene", "floor", "--velocity=1e300,0,0", "--trace", kept.to_str().unwrap()]);
+    // A run that fails (its push overflows `f32` in radii), after the
+    // arguments were accepted.
+    let out = sweepslide(&[
+        "run",
+        "--scene",
+        "floor",
+        "--velocity=1e38,0,0",
+        "--precision",
+        "f32",
+        "--trace",
+        kept.to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("overflows this precision"));
     assert_eq!(std::fs::read_to_string(&kept).unwrap(), "precious\n");
     let fresh = dir.join("fresh.csv");
     let _ = std::fs::remove_file(&fresh);
-    let out = sweepslide(&["run", "--scene", "floor", "--velocity=1e300,0,0", "--trace", fresh.to_str().unwrap()]);
+    let out = sweepslide(&[
+        "run",
+        "--scene",
+        "floor",
+        "--velocity=1e38,0,0",
+        "--precision",
+        "f32",
+        "--trace",
+        fresh.to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(!fresh.exists(), "a trace file this run created is not left empty");
     let case = dir.join("case.json");
@@ -763,6 +784,39 @@ fn input_that_rounds_to_nothing_is_refused() {
         let out = sweepslide(&[&args[..], &["--precision", "f32", "--frames", "3"]].concat());
         assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     }
+}
+
+/// A review's finding (twenty-sixth session): values given for a built-in
+/// scene on the command line bypassed the rounding to `f32` that the
+/// scene's own inputs get, so `--start=0,5.1,0` started the `f64` run at
+/// 5.1 and the `f32` run at 5.099999904632568, and a comparison of
+/// precisions compared different inputs. Now they are rounded alike, and a
+/// value that `f32` cannot hold is refused.
+#[test]
+fn values_given_for_a_built_in_scene_are_rounded_to_f32_like_its_own() {
+    let end = |precision: &str| {
+        let out = sweepslide(&[
+            "run",
+            "--scene",
+            "floor",
+            "--start=0,5.1,0",
+            "--velocity=0.1,0,0",
+            "--frames",
+            "1",
+            "--precision",
+            precision,
+            "--json",
+        ]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        json["final_position"].clone()
+    };
+    let expected = serde_json::json!([0.1f32 as f64, 5.1f32 as f64, 0.0]);
+    assert_eq!(end("f64"), expected);
+    assert_eq!(end("f32"), expected);
+    let out = sweepslide(&["run", "--scene", "floor", "--start=0,1e39,0", "--frames", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--start: 1e39 rounds to infinity in f32"));
 }
 
 /// A run that reaches a NaN position has no jitter to speak of: it is NaN

@@ -228,24 +228,46 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
     if let Some(f) = args.frames {
         scene.frames = f;
     }
-    if let Some(v) = args.start {
+    // A built-in scene's inputs are `f32` numbers, so that every precision
+    // runs the same ones (`sweepslide::lab::scenes`): values given for it
+    // are rounded likewise. (Given as they were, `--start=0,5.1,0` started
+    // the `f64` run at 5.1 and the `f32` run at 5.099999904632568.)
+    let input = |flag: &str, v: Option<[f64; 3]>| -> Result<Option<[f64; 3]>, Error> {
+        let Some(v) = v.filter(|_| built_in) else { return Ok(v) };
+        let rounded = v.map(|x| x as f32 as f64);
+        match v.iter().zip(&rounded).find(|(x, r)| !r.is_finite() || (**r == 0.0) != (**x == 0.0)) {
+            Some((x, r)) => Err(Error::InvalidArgument {
+                what: flag.into(),
+                message: format!(
+                    "{x:e} rounds to {} in f32, to which a built-in scene's inputs are rounded (so that every \
+                     precision runs the same ones)",
+                    if r.is_finite() { "zero" } else { "infinity" }
+                ),
+            }),
+            None => Ok(Some(rounded)),
+        }
+    };
+    let (start, gravity) = (input("--start", args.start)?, input("--gravity", args.gravity)?);
+    let velocity = input("--velocity", args.velocity)?;
+    let radii = input("--radius/--radii", args.radius.map(|r| [r; 3]).or(args.radii))?;
+    if let Some(v) = start {
         scene.start = v;
     }
-    if let Some(v) = args.gravity {
+    if let Some(v) = gravity {
         scene.gravity = v;
         // The scene's ideal slide is that of its push alone.
         if v != [0.0; 3] {
             scene.ideal = None;
         }
     }
-    if let Some(v) = args.velocity {
+    if let Some(v) = velocity {
         // A case's recorded velocities give way to the one asked for.
         if matches!(scene.motion, Motion::Scripted { .. }) {
             scene.motion = Motion::Constant;
         }
         scene = scene.with_velocity(v);
     }
-    if let Some(r) = args.radius.map(|r| [r; 3]).or(args.radii) {
+    if let Some(r) = radii {
         scene = scene.with_radii(r);
     }
     if let Some(o) = args.offset {
@@ -416,7 +438,7 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
                 r.embedded_frames
             );
         }
-        out!("  decision flips vs mpfr256: {} ({} with a different sliding plane)", r.decision_flips, r.plane_flips);
+        out!("  decision flips vs mpfr256: {}; frames with another sliding plane: {}", r.decision_flips, r.plane_flips);
         if let Some(s) = r.snag {
             out!("  snag ratio    {s:.6} (1 = ideal slide)");
         }

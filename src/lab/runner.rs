@@ -156,9 +156,11 @@ pub struct RunResult {
     /// start.
     pub decision_flips: usize,
     /// Frames whose sliding constraints differ from that replay: another
-    /// number of contacts, or a contact normal more than 1e-3 rad away. Ties
-    /// between coplanar triangles (a touch exactly on a shared edge) count
-    /// in `decision_flips` but not here.
+    /// number of contacts, or a contact normal more than 1e-3 rad away.
+    /// Neither count contains the other: ties between coplanar triangles (a
+    /// touch exactly on a shared edge) count in `decision_flips` but not
+    /// here, while the same edge or vertex met at a position rounded
+    /// elsewhere gives another normal, counted here only.
     pub plane_flips: usize,
     /// Position after the last frame.
     #[serde(with = "super::json_float::triple")]

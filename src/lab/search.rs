@@ -121,7 +121,9 @@ fn builtin_trial(rng: &mut Rng, family: &str) -> Result<Trial, Error> {
     let mut scene = scene.offset(offset, true)?.with_velocity(velocity);
     let mut args = format!("--scene {spec} --offset={} --velocity={}", vec3_arg(offset), vec3_arg(velocity));
     if let Some(radii) = radii {
-        scene = scene.with_radii(radii);
+        // Rounded to `f32` as the command line rounds a built-in scene's
+        // inputs; printed as drawn.
+        scene = scene.with_radii(radii.map(|x| x as f32 as f64));
         args += &format!(" --radii={}", vec3_arg(radii));
     }
     scene.frames = FRAMES;
