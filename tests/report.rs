@@ -394,3 +394,32 @@ fn merge_warns_of_failed_runs_on_standard_error() {
     assert!(html.contains("1 runs failed") && html.contains("the run broke here"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A review's finding (twenty-sixth session): `merge` compared the mesh
+/// paths, so shards made where the same meshes sit at other paths were
+/// refused (with a debug dump of both matrices), and a mesh changed under
+/// the same path would have merged. Meshes and cases are now identified by
+/// file name and contents, and the refusal says what differs.
+#[test]
+fn shards_are_the_same_matrix_when_their_meshes_are_the_same_files_anywhere() {
+    use sweepslide::report::matrix::matrix;
+    let dir = std::env::temp_dir().join(format!("sweepslide-matrix-{}", std::process::id()));
+    let (here, there) = (dir.join("here"), dir.join("there"));
+    std::fs::create_dir_all(&here).unwrap();
+    std::fs::create_dir_all(&there).unwrap();
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n";
+    std::fs::write(here.join("tri.obj"), obj).unwrap();
+    std::fs::write(there.join("tri.obj"), obj).unwrap();
+    let info = |dir: &std::path::Path, quick: bool| matrix(quick, &[dir.join("tri.obj")], &[]).0;
+    assert_eq!(info(&here, true).differences(&info(&there, true)), Vec::<String>::new());
+    std::fs::write(there.join("tri.obj"), "v 0 0 0\nv 2 0 0\nv 0 0 1\nf 1 2 3\n").unwrap();
+    let changed = info(&here, true).differences(&info(&there, true));
+    assert!(changed.len() == 1 && changed[0].starts_with("meshes and cases [tri.obj ("), "{changed:?}");
+    let kinds = info(&here, true).differences(&info(&here, false));
+    assert!(kinds.iter().any(|d| d == "a quick matrix and a full one"), "{kinds:?}");
+    // Files written before the digests existed are compared by path.
+    let old = |dir: &std::path::Path| sweepslide::report::matrix::MatrixInfo { inputs: vec![], ..info(dir, true) };
+    assert_eq!(old(&here).differences(&old(&here)), Vec::<String>::new());
+    assert_eq!(old(&here).differences(&old(&there)).len(), 1);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

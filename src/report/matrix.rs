@@ -103,6 +103,52 @@ pub struct MatrixInfo {
     pub cases: Vec<PathBuf>,
     /// Number of runs in the whole matrix.
     pub runs: usize,
+    /// Each mesh's and case's file name and a digest of its contents
+    /// (64-bit FNV-1a; 0 for a file that could not be read), in the order
+    /// of `meshes` then `cases`: what identifies them wherever they lie,
+    /// so shards made where the files sit at other paths merge, and a file
+    /// changed under the same path does not. Empty in files written before
+    /// the twenty-sixth session (their paths are compared instead).
+    #[serde(default)]
+    pub inputs: Vec<(String, u64)>,
+}
+
+impl MatrixInfo {
+    /// How the matrix `other` differs from this one, in words (empty when
+    /// it is the same matrix).
+    #[must_use]
+    pub fn differences(&self, other: &MatrixInfo) -> Vec<String> {
+        let kind = |quick: bool| if quick { "quick" } else { "full" };
+        let mut out = Vec::new();
+        if self.quick != other.quick {
+            out.push(format!("a {} matrix and a {} one", kind(self.quick), kind(other.quick)));
+        }
+        if self.runs != other.runs {
+            out.push(format!("{} runs and {}", self.runs, other.runs));
+        }
+        let names = |i: &MatrixInfo| i.inputs.iter().map(|(n, d)| format!("{n} ({d:016x})")).collect::<Vec<_>>();
+        let paths =
+            |i: &MatrixInfo| i.meshes.iter().chain(&i.cases).map(|p| p.display().to_string()).collect::<Vec<_>>();
+        let (a, b) = if self.inputs.is_empty() || other.inputs.is_empty() {
+            (paths(self), paths(other))
+        } else {
+            (names(self), names(other))
+        };
+        if a != b {
+            out.push(format!("meshes and cases [{}] and [{}]", a.join(", "), b.join(", ")));
+        }
+        out
+    }
+}
+
+/// A file's name and the 64-bit FNV-1a digest of its contents (0 when it
+/// cannot be read: the run that loads it reports why).
+fn identify(path: &std::path::Path) -> (String, u64) {
+    let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let digest = std::fs::read(path).map_or(0, |bytes| {
+        bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
+    });
+    (name, digest)
 }
 
 /// The seeds a scene runs with: several for seeded scenes (their geometry
@@ -179,7 +225,8 @@ pub fn matrix(quick: bool, meshes: &[PathBuf], cases: &[PathBuf]) -> (MatrixInfo
             }
         }
     }
-    (MatrixInfo { quick, meshes: meshes.to_vec(), cases: cases.to_vec(), runs: entries.len() }, entries)
+    let inputs = meshes.iter().chain(cases).map(|p| identify(p)).collect();
+    (MatrixInfo { quick, meshes: meshes.to_vec(), cases: cases.to_vec(), runs: entries.len(), inputs }, entries)
 }
 
 fn default_frames(spec: &str) -> usize {

@@ -113,8 +113,10 @@ pub fn read_runs(dir: &Path) -> Result<Runs, Error> {
 pub fn merge(shards: Vec<Runs>) -> Result<Runs, Error> {
     let bad = |message: String| Error::InvalidArgument { what: "merge".into(), message };
     let info = shards.first().map(|s| s.info.clone()).ok_or_else(|| bad("no shard given".into()))?;
-    if let Some(other) = shards.iter().find(|s| s.info != info) {
-        return Err(bad(format!("shards come from different matrices ({:?} and {:?})", info, other.info)));
+    if let Some((k, differences)) =
+        shards.iter().map(|s| info.differences(&s.info)).enumerate().find(|(_, d)| !d.is_empty())
+    {
+        return Err(bad(format!("shards 1 and {} come from different matrices: {}", k + 1, differences.join("; "))));
     }
     let mut records: Vec<Record> = shards.into_iter().flat_map(|s| s.records).collect();
     records.sort_by_key(|r| r.entry.index);
