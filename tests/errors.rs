@@ -361,6 +361,19 @@ fn obj_bad_number() {
     obj_error("# header\n\nv 1.0 2.0 3.0.0\n", 3, "not a number");
 }
 
+/// A review's finding (twenty-sixth session): the message quoted the
+/// offending word whole, so a 2 MB line gave a 2 MB error. It is cut now,
+/// and says how long it was.
+#[test]
+fn obj_error_on_a_huge_word_is_short() {
+    let word = "x".repeat(2_000_000);
+    obj_error(&format!("{V4}v 1 {word} 2\n"), 5, "characters in all)");
+    match TriangleMesh::from_obj_str(&format!("{V4}v 1 {word} 2\n"), Path::new("x.obj")) {
+        Err(Error::Obj { message, .. }) => assert!(message.len() < 300, "{} bytes", message.len()),
+        other => panic!("{other:?}"),
+    }
+}
+
 /// The optional fourth value of `v` (the weight) is a number too.
 #[test]
 fn obj_bad_vertex_weight_is_a_bad_number() {

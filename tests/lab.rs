@@ -885,6 +885,18 @@ fn a_finding_run_with_another_response_or_precision_says_how_to_reproduce_it() {
     assert!(other.contains("records precision `f32`") && other.contains("pass --precision f32"), "{other}");
     let same = stderr(&["--response", "linahan", "--precision", "f32"]);
     assert!(!same.contains("records"), "{same}");
+    // A value the command line does not know is not offered as a flag
+    // (a review, twenty-sixth session: `pass --response bogus`).
+    let mut finding: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(case).unwrap()).unwrap();
+    (finding["response"], finding["precision"]) = ("bogus".into(), "f99".into());
+    let bogus = std::env::temp_dir().join(format!("sweepslide-bogus-{}.json", std::process::id()));
+    std::fs::write(&bogus, finding.to_string()).unwrap();
+    let out = sweepslide(&["run", "--case", bogus.to_str().unwrap(), "--frames", "2"]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{said}");
+    assert!(said.contains("records an unknown response `bogus`"), "{said}");
+    assert!(said.contains("records an unknown precision `f99`") && !said.contains("pass --"), "{said}");
+    std::fs::remove_file(&bogus).unwrap();
 }
 
 /// The random search on a few trials: every finding is what its kind says

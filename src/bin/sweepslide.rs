@@ -292,12 +292,21 @@ fn note_finding(path: &std::path::Path, args: &RunArgs) {
     };
     let response = args.response.to_possible_value().map(|v| v.get_name().to_string()).unwrap_or_default();
     let precision = args.precision.to_string();
+    let known = |key: &str, value: &str| match key {
+        "response" => ResponseArg::from_str(value, true).is_ok(),
+        _ => Precision::parse(value).is_ok(),
+    };
     for (key, used) in [("response", response), ("precision", precision)] {
         if let Some(recorded) = finding.get(key).and_then(|v| v.as_str()).filter(|r| !r.eq_ignore_ascii_case(&used)) {
-            eprintln!(
-                "note: {} records {key} `{recorded}`; this run uses `{used}` (pass --{key} {recorded} to reproduce it)",
-                path.display()
-            );
+            if known(key, recorded) {
+                eprintln!(
+                    "note: {} records {key} `{recorded}`; this run uses `{used}` (pass --{key} {recorded} to reproduce \
+                     it)",
+                    path.display()
+                );
+            } else {
+                eprintln!("note: {} records an unknown {key} `{recorded}`; this run uses `{used}`", path.display());
+            }
         }
     }
 }
@@ -462,6 +471,16 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
         };
     let meshes = files_in(&args.meshes, "--meshes", "../shared/meshes", scenes::meshes_in)?;
     let cases = files_in(&args.cases, "--cases", "scenes/fuzz", scenes::cases_in)?;
+    // The defaults are relative to the working directory: say when one
+    // found nothing, rather than leave the report quietly without.
+    for (given, found, default, flag, what) in [
+        (&args.meshes, meshes.is_empty(), "../shared/meshes", "--meshes", ".obj meshes"),
+        (&args.cases, cases.is_empty(), "scenes/fuzz", "--cases", "fuzz cases"),
+    ] {
+        if given.is_none() && found {
+            eprintln!("note: no {what} in {default} (relative to the working directory); pass {flag} DIR to add some");
+        }
+    }
     // An unwritable output directory is reported before the runs (and
     // after the arguments, so a bad one leaves no directory behind).
     std::fs::create_dir_all(&args.out)

@@ -79,11 +79,12 @@ fn left_out(nan_runs: usize) -> String {
 /// One run's slide ratio and frames at the cap, then `more` (what else
 /// the claim weighs), for the evidence of the freeze claims.
 fn slide_evidence(r: &RunResult, more: &str) -> String {
+    // A run that ends at NaN has no slide ratio.
+    let snag = r.snag.map_or_else(|| "none (no finite end)".to_string(), |s| format!("{s:.3}"));
     format!(
-        "{} {}: snag ratio {:.3}, {} of {} frames at the cap, {more}",
+        "{} {}: snag ratio {snag}, {} of {} frames at the cap, {more}",
         r.response,
         describe(r),
-        r.snag.unwrap_or(f64::NAN),
         r.capped_frames,
         r.frames
     )

@@ -57,6 +57,19 @@ pub struct Ignored {
     pub first_line: usize,
 }
 
+/// Longest error message kept whole, in characters: a message quotes the
+/// offending word, which in a file that is not OBJ (one long line of JSON,
+/// say) can be megabytes long.
+const MESSAGE_CHARS: usize = 200;
+
+/// `message` cut to [`MESSAGE_CHARS`] characters, saying so.
+fn clipped(message: String) -> String {
+    match message.char_indices().nth(MESSAGE_CHARS) {
+        None => message,
+        Some((end, _)) => format!("{}... ({} characters in all)", &message[..end], message.chars().count()),
+    }
+}
+
 /// Parses OBJ text; `path` only names the source in errors. A leading
 /// byte-order mark (as some Windows tools write) is ignored.
 ///
@@ -67,7 +80,7 @@ pub struct Ignored {
 /// range, a line/point element or free-form geometry.
 pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
     let mut reader = Reader::default();
-    let err = |line: usize, message: String| Error::Obj { path: path.to_path_buf(), line, message };
+    let err = |line: usize, message: String| Error::Obj { path: path.to_path_buf(), line, message: clipped(message) };
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     // A statement continued from earlier lines: its first line and text.
     let mut continued: Option<(usize, String)> = None;
