@@ -638,6 +638,22 @@ fn another_body_drops_the_ideal_slide() {
     assert!(!snag(&["--radii=1,0.5,1"]));
 }
 
+/// `command` split as a POSIX shell splits it, for the quoting that the
+/// search prints (single quotes, and `\'` between them).
+fn shell_words(command: &str) -> Vec<String> {
+    let (mut words, mut word, mut quoted, mut chars) = (Vec::new(), String::new(), false, command.chars());
+    while let Some(c) = chars.next() {
+        match c {
+            '\'' => quoted = !quoted,
+            '\\' if !quoted => word.extend(chars.next()),
+            ' ' if !quoted => words.extend((!word.is_empty()).then(|| std::mem::take(&mut word))),
+            c => word.push(c),
+        }
+    }
+    words.extend((!word.is_empty()).then_some(word));
+    words
+}
+
 /// The search's mesh family, on the shared meshes: the robust response
 /// never fails there either, and a mesh finding's command reproduces its
 /// run bit for bit (start, push, gravity, body, offset and walk seed).
@@ -653,7 +669,7 @@ fn random_search_over_meshes_reproduces_its_findings() {
     }
     // A seed whose 25 trials include a mesh's findings.
     let findings = search(4, 25, 2, &meshes).unwrap();
-    let on_meshes: Vec<_> = findings.iter().filter(|f| f.command.contains("--mesh ")).collect();
+    let on_meshes: Vec<_> = findings.iter().filter(|f| f.command.contains("--mesh=")).collect();
     assert!(!on_meshes.is_empty(), "no finding on a mesh in 25 trials");
     // Compared as JSON, where a NaN equals itself; without the timing.
     let timeless = |r: &RunResult| serde_json::to_string(&RunResult { ns_per_move: 0.0, ..r.clone() }).unwrap();
@@ -661,8 +677,8 @@ fn random_search_over_meshes_reproduces_its_findings() {
         assert_ne!(f.result.response, "robust", "{f:?}");
     }
     for f in on_meshes {
-        let args: Vec<&str> = f.command.split(' ').skip(1).chain(["--json"]).collect();
-        let out = sweepslide(&args);
+        let args: Vec<String> = shell_words(&f.command).into_iter().skip(1).chain(["--json".into()]).collect();
+        let out = sweepslide(&args.iter().map(String::as_str).collect::<Vec<_>>());
         assert!(out.status.success(), "{}: {}", f.command, String::from_utf8_lossy(&out.stderr));
         let again: RunResult = serde_json::from_slice(&out.stdout).unwrap();
         assert_eq!(timeless(&again), timeless(&f.result), "{}", f.command);

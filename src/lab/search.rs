@@ -76,6 +76,19 @@ fn vec3_arg(a: [f64; 3]) -> String {
     format!("{:e},{:e},{:e}", a[0], a[1], a[2])
 }
 
+/// `word` as a POSIX shell reads it back: bare when it holds only
+/// `[A-Za-z0-9_./-]` and does not start with `-`, else in single quotes
+/// (each `'` written `'\''`). (A path that starts with `-` is printed
+/// after `--mesh=`, where the command line does not take it for a flag.)
+fn shell_word(word: &str) -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_./-".contains(c);
+    if !word.is_empty() && !word.starts_with('-') && word.chars().all(plain) {
+        word.to_string()
+    } else {
+        format!("'{}'", word.replace('\'', "'\\''"))
+    }
+}
+
 /// `x` to four significant digits, as printed and read back.
 fn four_digits(x: f64) -> f64 {
     format!("{x:.3e}").parse().expect("a formatted float parses")
@@ -196,8 +209,8 @@ fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
     let scene = scene.offset(offset, false).expect("a moved mesh keeps its triangles");
     let body = if radii == [r; 3] { format!("--radius {r:e}") } else { format!("--radii={}", vec3_arg(radii)) };
     let args = format!(
-        "--mesh {} --start={} --velocity={} --gravity={} {body} --offset={} --seed {seed}",
-        mesh.path.display(),
+        "--mesh={} --start={} --velocity={} --gravity={} {body} --offset={} --seed {seed}",
+        shell_word(&mesh.path.to_string_lossy()),
         vec3_arg(start.into()),
         vec3_arg(velocity),
         vec3_arg(gravity),
@@ -272,6 +285,14 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
     let meshes = meshes
         .iter()
         .map(|path| {
+            // A finding's command names the mesh: a name that is not text
+            // would print as another.
+            if path.to_str().is_none() {
+                return Err(Error::InvalidArgument {
+                    what: path.display().to_string(),
+                    message: "the search prints each mesh's path in its commands; this one is not valid UTF-8".into(),
+                });
+            }
             let scene = Scene::from_obj(path)?;
             let world = World::new(scene.mesh.clone())?;
             Ok(SearchMesh { scene, world, path: path.clone() })
@@ -334,4 +355,22 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
         }
     }
     Ok(findings)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shell_word;
+
+    /// A review's finding (twenty-sixth session): a mesh path with a space
+    /// printed bare, and the command split there in a shell.
+    #[test]
+    fn a_printed_path_reads_back_through_a_shell() {
+        for path in ["/a/b-c_d.obj", "m dir/fandisk.obj", "it's.obj", "-flag.obj", "", "$HOME/x;rm -rf y.obj"] {
+            let out =
+                std::process::Command::new("sh").arg("-c").arg(format!("printf %s {}", shell_word(path))).output();
+            let out = out.expect("sh runs");
+            assert_eq!(String::from_utf8_lossy(&out.stdout), path, "{}", shell_word(path));
+        }
+        assert_eq!(shell_word("/a/b-c_d.obj"), "/a/b-c_d.obj");
+    }
 }

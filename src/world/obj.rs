@@ -57,16 +57,22 @@ pub struct Ignored {
     pub first_line: usize,
 }
 
-/// Longest error message kept whole, in characters: a message quotes the
-/// offending word, which in a file that is not OBJ (one long line of JSON,
-/// say) can be megabytes long.
-const MESSAGE_CHARS: usize = 200;
+/// Longest word an error message quotes whole, in characters: in a file
+/// that is not OBJ (one long line of JSON, say) the offending word can be
+/// megabytes long.
+const QUOTED_CHARS: usize = 60;
 
-/// `message` cut to [`MESSAGE_CHARS`] characters, saying so.
-fn clipped(message: String) -> String {
-    match message.char_indices().nth(MESSAGE_CHARS) {
-        None => message,
-        Some((end, _)) => format!("{}... ({} characters in all)", &message[..end], message.chars().count()),
+/// A word of the file as an error message quotes it: in backticks, cut to
+/// [`QUOTED_CHARS`] characters (saying how long it was), so that what is
+/// wrong with it still shows.
+struct Quoted<'a>(&'a str);
+
+impl std::fmt::Display for Quoted<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0.char_indices().nth(QUOTED_CHARS) {
+            None => write!(f, "`{}`", self.0),
+            Some((end, _)) => write!(f, "`{}...` ({} characters)", &self.0[..end], self.0.chars().count()),
+        }
     }
 }
 
@@ -80,7 +86,7 @@ fn clipped(message: String) -> String {
 /// range, a line/point element or free-form geometry.
 pub fn parse_obj(text: &str, path: &Path) -> Result<ObjData, Error> {
     let mut reader = Reader::default();
-    let err = |line: usize, message: String| Error::Obj { path: path.to_path_buf(), line, message: clipped(message) };
+    let err = |line: usize, message: String| Error::Obj { path: path.to_path_buf(), line, message };
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     // A statement continued from earlier lines: its first line and text.
     let mut continued: Option<(usize, String)> = None;
@@ -168,9 +174,9 @@ impl Reader {
                 }
                 let mut v = [0.0; 4];
                 for (slot, word) in v.iter_mut().zip(&coords) {
-                    *slot = word.parse::<f64>().map_err(|_| format!("`{word}` is not a number"))?;
+                    *slot = word.parse::<f64>().map_err(|_| format!("{} is not a number", Quoted(word)))?;
                     if !slot.is_finite() {
-                        return Err(format!("vertex coordinate `{word}` is not finite"));
+                        return Err(format!("vertex coordinate {} is not finite", Quoted(word)));
                     }
                 }
                 data.vertices.push([v[0], v[1], v[2]]);
@@ -213,7 +219,7 @@ impl Reader {
                     None => data.ignored.push(Ignored { keyword: keyword.to_string(), count: 1, first_line: line }),
                 }
             }
-            other => return Err(format!("unknown statement `{other}`")),
+            other => return Err(format!("unknown statement {}", Quoted(other))),
         }
         Ok(())
     }
@@ -270,7 +276,7 @@ fn folded_fan(vertices: &[[f64; 3]], corners: &[u32]) -> Option<usize> {
 fn resolve_corner(word: &str, counts: [usize; 3]) -> Result<u32, String> {
     let parts: Vec<&str> = word.split('/').collect();
     if parts.len() > 3 {
-        return Err(format!("`{word}` is not a face corner (v, v/vt, v//vn or v/vt/vn)"));
+        return Err(format!("{} is not a face corner (v, v/vt, v//vn or v/vt/vn)", Quoted(word)));
     }
     let vertex = resolve_index(parts[0], counts[0], "vertex", word)?;
     for (k, (part, what)) in parts.iter().zip(["vertex", "texture coordinate", "normal"]).enumerate().skip(1) {
@@ -278,14 +284,14 @@ fn resolve_corner(word: &str, counts: [usize; 3]) -> Result<u32, String> {
             resolve_index(part, counts[k], what, word)?;
         }
     }
-    u32::try_from(vertex).map_err(|_| format!("vertex index of `{word}` is too large"))
+    u32::try_from(vertex).map_err(|_| format!("vertex index of {} is too large", Quoted(word)))
 }
 
 /// A 1-based (or, negative, from-the-end) OBJ index as 0-based, among the
 /// `count` elements of its kind (`what`) read so far; `word` is the corner
 /// it belongs to, for the message.
 fn resolve_index(text: &str, count: usize, what: &str, word: &str) -> Result<usize, String> {
-    let i: i64 = text.parse().map_err(|_| format!("`{word}`: `{text}` is not a {what} index"))?;
+    let i: i64 = text.parse().map_err(|_| format!("{}: {} is not a {what} index", Quoted(word), Quoted(text)))?;
     let resolved = match i {
         0 => return Err(format!("{what} index 0 is invalid (OBJ indices start at 1)")),
         i if i > 0 => i - 1,
