@@ -668,7 +668,10 @@ fn random_search_over_meshes_reproduces_its_findings() {
         return;
     }
     // A seed whose 25 trials include a mesh's findings.
-    let findings = search(4, 25, 2, &meshes).unwrap();
+    let outcome = search(4, 25, 2, &meshes).unwrap();
+    let on_mesh_trials: usize = outcome.trials.iter().filter(|(f, _)| f.starts_with("mesh:")).map(|(_, n)| n).sum();
+    assert!(on_mesh_trials > 0 && outcome.trials.values().sum::<usize>() == 25, "{:?}", outcome.trials);
+    let findings = outcome.findings;
     let on_meshes: Vec<_> = findings.iter().filter(|f| f.command.contains("--mesh=")).collect();
     assert!(!on_meshes.is_empty(), "no finding on a mesh in 25 trials");
     // Compared as JSON, where a NaN equals itself; without the timing.
@@ -923,7 +926,11 @@ fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
     use sweepslide::lab::search::{FREEZE, FailureKind, search};
     // A seed whose 40 trials include a freeze and an ellipsoid's finding (a
     // change to the families or their draws may need another).
-    let findings = search(4, 40, 1, &[]).unwrap();
+    let outcome = search(4, 40, 1, &[]).unwrap();
+    assert_eq!(outcome.trials.values().sum::<usize>(), 40);
+    assert!(outcome.trials.keys().all(|f| !f.starts_with("mesh:")), "{:?}", outcome.trials);
+    assert!(outcome.ellipsoids > 0 && outcome.ellipsoids < 40);
+    let findings = outcome.findings;
     assert!(findings.iter().any(|f| f.result.response != "robust"), "no finding in 40 trials");
     assert!(findings.iter().any(|f| f.kind == FailureKind::Freeze), "no freeze in 40 trials");
     assert!(findings.iter().any(|f| f.command.contains("--radii=")), "no ellipsoid's finding in 40 trials");

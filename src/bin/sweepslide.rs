@@ -600,15 +600,21 @@ fn search_command(
             found
         }
     };
-    let findings = sweepslide::lab::search::search(seed, trials, jobs, &meshes)?;
-    for f in &findings {
+    let outcome = sweepslide::lab::search::search(seed, trials, jobs, &meshes)?;
+    for f in &outcome.findings {
         if json {
             out!("{}", serde_json::to_string(f).expect("findings serialise"));
         } else {
             out!("{:?} {:.3e}  {}", f.kind, f.value, f.command);
         }
     }
-    eprintln!("{} findings in {} trials (seed {seed})", findings.len(), trials);
+    let families: Vec<String> = outcome.trials.iter().map(|(family, n)| format!("{family} {n}")).collect();
+    eprintln!(
+        "{} findings in {trials} trials (seed {seed}): {}; {} of them ellipsoids",
+        outcome.findings.len(),
+        families.join(", "),
+        outcome.ellipsoids
+    );
     Ok(())
 }
 

@@ -19,6 +19,7 @@ use crate::respond::Response;
 use crate::world::World;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -57,15 +58,28 @@ pub struct Finding {
     pub command: String,
 }
 
+/// What a search found, and what it tried.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// Every failure, in trial order.
+    pub findings: Vec<Finding>,
+    /// How many trials each family had (`mesh:NAME` for a mesh's), by name.
+    pub trials: BTreeMap<String, usize>,
+    /// How many of them moved an ellipsoid.
+    pub ellipsoids: usize,
+}
+
 /// One random trial: the scene as it runs, the command-line arguments
-/// that build it, whether its ideal is rest, and whether it is a mesh's.
+/// that build it, its family (`mesh:NAME` for a mesh's), whether its ideal
+/// is rest, and whether it moves an ellipsoid.
 #[derive(Clone, Debug)]
 struct Trial {
     scene: Arc<Scene>,
     args: String,
     seed: u64,
+    family: String,
     rest: bool,
-    mesh: bool,
+    ellipsoid: bool,
 }
 
 /// Frames per trial.
@@ -140,7 +154,8 @@ fn builtin_trial(rng: &mut Rng, family: &str) -> Result<Trial, Error> {
         args += &format!(" --radii={}", vec3_arg(radii));
     }
     scene.frames = FRAMES;
-    Ok(Trial { scene: Arc::new(scene), args, seed: 1, rest, mesh: false })
+    let ellipsoid = radii.is_some();
+    Ok(Trial { scene: Arc::new(scene), args, seed: 1, family: family.to_string(), rest, ellipsoid })
 }
 
 /// A mesh the search moves bodies over: its default scene, its world for
@@ -216,7 +231,8 @@ fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
         vec3_arg(gravity),
         vec3_arg(offset)
     );
-    Trial { scene: Arc::new(scene), args, seed, rest: false, mesh: true }
+    let family = format!("mesh:{}", base.name);
+    Trial { scene: Arc::new(scene), args, seed, family, rest: false, ellipsoid: radii != [r; 3] }
 }
 
 fn command(t: &Trial, response: Response, precision: Precision) -> String {
@@ -281,7 +297,7 @@ fn confirm_jitter(cfg: &RunConfig) -> Result<bool, Error> {
 /// A mesh that cannot be loaded, a scene that cannot be built at its
 /// random offset, a run that fails (naming its command), or a thread-pool
 /// failure.
-pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Result<Vec<Finding>, Error> {
+pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Result<Outcome, Error> {
     let meshes = meshes
         .iter()
         .map(|path| {
@@ -302,6 +318,7 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
     let count = families.len() as u64 + u64::from(!meshes.is_empty());
     let mut rng = Rng::new(seed);
     let mut plan = Vec::new();
+    let mut tried = Outcome { findings: Vec::new(), trials: BTreeMap::new(), ellipsoids: 0 };
     for _ in 0..trials {
         let family = (rng.next_u64() % count) as usize;
         let t = match families.get(family) {
@@ -311,6 +328,8 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
                 mesh_trial(&mut rng, mesh)
             }
         };
+        *tried.trials.entry(t.family.clone()).or_default() += 1;
+        tried.ellipsoids += usize::from(t.ellipsoid);
         for precision in [Precision::F32, Precision::F64] {
             for response in Response::ALL {
                 plan.push((
@@ -338,7 +357,8 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
         // ends inside only triangles it entered from behind); on a mesh,
         // not a run that passed through a back face at all ([`mesh_trial`]).
         let (penetrating, depth) = r.counted_penetration();
-        if penetrating > 0 && !(t.mesh && r.one_sided() && r.back_face_frames > 0) {
+        let on_mesh = t.family.starts_with("mesh:");
+        if penetrating > 0 && !(on_mesh && r.one_sided() && r.back_face_frames > 0) {
             found(FailureKind::Penetration, depth);
         }
         if r.nan_frames > 0 {
@@ -354,7 +374,7 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
             found(FailureKind::Freeze, snag);
         }
     }
-    Ok(findings)
+    Ok(Outcome { findings, ..tried })
 }
 
 #[cfg(test)]
