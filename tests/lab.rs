@@ -442,14 +442,21 @@ fn runs_are_deterministic_across_thread_counts() {
     assert_eq!(single, one[4]);
 }
 
-#[test]
-fn every_shared_mesh_runs() {
+/// The shared meshes (`../shared/meshes`), or `None`, saying the test is
+/// skipped, where there are none.
+fn shared_meshes() -> Option<Vec<std::path::PathBuf>> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
     let meshes = sweepslide::lab::scenes::meshes_in(&dir);
     if meshes.is_empty() {
         eprintln!("skipped: no meshes in {}", dir.display());
-        return;
+        return None;
     }
+    Some(meshes)
+}
+
+#[test]
+fn every_shared_mesh_runs() {
+    let Some(meshes) = shared_meshes() else { return };
     for mesh in meshes {
         for response in ["fauerby", "linahan", "robust"] {
             let out = sweepslide(&[
@@ -661,12 +668,7 @@ fn shell_words(command: &str) -> Vec<String> {
 fn random_search_over_meshes_reproduces_its_findings() {
     use sweepslide::lab::RunResult;
     use sweepslide::lab::search::search;
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
-    let meshes = sweepslide::lab::scenes::meshes_in(&dir);
-    if meshes.is_empty() {
-        eprintln!("skipped: no meshes in {}", dir.display());
-        return;
-    }
+    let Some(meshes) = shared_meshes() else { return };
     // A seed whose 25 trials include a mesh's findings.
     let outcome = search(4, 25, 2, &meshes).unwrap();
     let on_mesh_trials: usize = outcome.trials.iter().filter(|(f, _)| f.starts_with("mesh:")).map(|(_, n)| n).sum();
@@ -727,31 +729,25 @@ fn a_failed_run_leaves_an_existing_trace_file_alone_and_the_input_is_never_the_t
     std::fs::write(&kept, "precious\n").unwrap();
     // A run that fails (its push overflows `f32` in radii), after the
     // arguments were accepted.
-    let out = sweepslide(&[
-        "run",
-        "--scene",
-        "floor",
-        "--velocity=1e38,0,0",
-        "--precision",
-        "f32",
-        "--trace",
-        kept.to_str().unwrap(),
-    ]);
+    let failing = |trace: &std::path::Path| {
+        sweepslide(&[
+            "run",
+            "--scene",
+            "floor",
+            "--velocity=1e38,0,0",
+            "--precision",
+            "f32",
+            "--trace",
+            trace.to_str().unwrap(),
+        ])
+    };
+    let out = failing(&kept);
     assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(String::from_utf8_lossy(&out.stderr).contains("overflows this precision"));
     assert_eq!(std::fs::read_to_string(&kept).unwrap(), "precious\n");
     let fresh = dir.join("fresh.csv");
     let _ = std::fs::remove_file(&fresh);
-    let out = sweepslide(&[
-        "run",
-        "--scene",
-        "floor",
-        "--velocity=1e38,0,0",
-        "--precision",
-        "f32",
-        "--trace",
-        fresh.to_str().unwrap(),
-    ]);
+    let out = failing(&fresh);
     assert_eq!(out.status.code(), Some(2));
     assert!(!fresh.exists(), "a trace file this run created is not left empty");
     let case = dir.join("case.json");
