@@ -29,7 +29,8 @@ enum Command {
     Scenes,
     /// Run the experiment matrix (or one shard of it) and write the report.
     Report(ReportArgs),
-    /// Search random scenes (angles, clearances, speeds, offsets) for
+    /// Search random scenes (angles, clearances, speeds, offsets; spheres and
+    /// ellipsoids; with --meshes, bodies over real meshes too) for
     /// penetration, NaN, jitter and freezes, and print how to reproduce each
     /// failure.
     Search {
