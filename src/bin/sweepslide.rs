@@ -461,27 +461,29 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
 fn report_command(args: &ReportArgs) -> Result<(), Failure> {
     use std::io::IsTerminal;
     use sweepslide::report::{Runs, matrix, render, run_entries, write_runs};
-    let files_in =
-        |given: &Option<PathBuf>, flag: &str, default: &str, list: fn(&std::path::Path) -> Vec<PathBuf>| match given {
+    let files_in = |given: &Option<PathBuf>, flag: &str, default: &str, list: fn(&std::path::Path) -> Vec<PathBuf>| {
+        match given {
             Some(dir) if !dir.is_dir() => Err(Failure(Error::InvalidArgument {
                 what: flag.into(),
                 message: format!("{} is not a directory", dir.display()),
             })),
             Some(dir) => Ok(list(dir)),
-            None => Ok(list(std::path::Path::new(default))),
-        };
+            None => {
+                let found = list(std::path::Path::new(default));
+                // The default is relative to the working directory: say when
+                // it found nothing, rather than leave the report quietly
+                // without.
+                if found.is_empty() {
+                    eprintln!(
+                        "note: nothing in {default} (relative to the working directory); pass {flag} DIR to add some"
+                    );
+                }
+                Ok(found)
+            }
+        }
+    };
     let meshes = files_in(&args.meshes, "--meshes", "../shared/meshes", scenes::meshes_in)?;
     let cases = files_in(&args.cases, "--cases", "scenes/fuzz", scenes::cases_in)?;
-    // The defaults are relative to the working directory: say when one
-    // found nothing, rather than leave the report quietly without.
-    for (given, found, default, flag, what) in [
-        (&args.meshes, meshes.is_empty(), "../shared/meshes", "--meshes", ".obj meshes"),
-        (&args.cases, cases.is_empty(), "scenes/fuzz", "--cases", "fuzz cases"),
-    ] {
-        if given.is_none() && found {
-            eprintln!("note: no {what} in {default} (relative to the working directory); pass {flag} DIR to add some");
-        }
-    }
     // An unwritable output directory is reported before the runs (and
     // after the arguments, so a bad one leaves no directory behind).
     std::fs::create_dir_all(&args.out)

@@ -189,10 +189,10 @@ fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
     let r = four_digits(base.radii[0] * 10f64.powf(rng.range(-0.7, 0.7)));
     let sphere = Vector3::repeat(r);
     let clear = |p: &Vector3<f64>| penetration(&mesh.world, &sphere, p).is_none_or(|d| d <= -0.01 * r);
-    let n = mesh.scene.mesh.len() as u64;
+    let n = base.mesh.len() as u64;
     let start = (0..100)
         .find_map(|_| {
-            let t = mesh.scene.mesh.triangle((rng.next_u64() % n) as u32);
+            let t = base.mesh.triangle((rng.next_u64() % n) as u32);
             let (u, v) = (rng.unit(), rng.unit());
             let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
             let on = t.a + (t.b - t.a) * u + (t.c - t.a) * v;
@@ -201,7 +201,7 @@ fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
             clear(&p).then_some(p)
         })
         .unwrap_or_else(|| {
-            let b = mesh.scene.mesh.bounds();
+            let b = base.mesh.bounds();
             Vector3::new(b.centre().x, b.max.y + 2.0 * r, b.centre().z).map(|x| x as f32 as f64)
         });
     let direction = loop {
@@ -219,10 +219,11 @@ fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
         [(); 3].map(|()| four_digits(rng.range(-m, m)))
     };
     let seed = 1 + rng.next_u64() % 1000;
-    let radii = ellipsoid(rng, r).unwrap_or([r; 3]);
+    let drawn = ellipsoid(rng, r);
+    let body = drawn.map_or_else(|| format!("--radius {r:e}"), |radii| format!("--radii={}", vec3_arg(radii)));
+    let radii = drawn.unwrap_or([r; 3]);
     let scene = Scene { start: start.into(), velocity, gravity, radii, frames: FRAMES, ..base.clone() };
     let scene = scene.offset(offset, false).expect("a moved mesh keeps its triangles");
-    let body = if radii == [r; 3] { format!("--radius {r:e}") } else { format!("--radii={}", vec3_arg(radii)) };
     let args = format!(
         "--mesh={} --start={} --velocity={} --gravity={} {body} --offset={} --seed {seed}",
         shell_word(&mesh.path.to_string_lossy()),
@@ -232,7 +233,7 @@ fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
         vec3_arg(offset)
     );
     let family = format!("mesh:{}", base.name);
-    Trial { scene: Arc::new(scene), args, seed, family, rest: false, ellipsoid: radii != [r; 3] }
+    Trial { scene: Arc::new(scene), args, seed, family, rest: false, ellipsoid: drawn.is_some() }
 }
 
 fn command(t: &Trial, response: Response, precision: Precision) -> String {
