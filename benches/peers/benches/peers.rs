@@ -21,7 +21,10 @@
 //!   displacement) taken from a trajectory, so every call is a realistic
 //!   grounded move: the robust `f32` trajectory for every `f32` run and
 //!   Rapier, the robust `f64` one for `f64`. sweepslide runs `move_body` (robust f32 and f64,
-//!   Fauerby and Linahan f32 for reference); Rapier runs
+//!   Fauerby and Linahan f32 for reference), with the velocity and then the
+//!   gravity as two passes (Fauerby's scheme), and `robust_f32_summed` gives
+//!   it Rapier's very input instead: their sum as one displacement, one
+//!   pass; Rapier runs
 //!   `KinematicCharacterController::move_shape` on the same mesh as a
 //!   `TriMesh` collider, with the same ball, start and displacement
 //!   (velocity + gravity in one call, Rapier having no second pass), in its
@@ -47,7 +50,7 @@ use sweepslide::geom::{Ellipsoid, Triangle, Vec3, vec3};
 use sweepslide::lab::scenes::build;
 use sweepslide::respond::{MoveOptions, Response, move_body};
 use sweepslide::world::World;
-use sweepslide_peers::{FrameInput, RapierConfig, RapierScene, rv, trajectory};
+use sweepslide_peers::{FrameInput, RapierConfig, RapierScene, rv, summed, trajectory};
 
 // ---------------------------------------------------------------------------
 // triangle_cast
@@ -276,18 +279,20 @@ fn inputs<T: Real>(frames: &[FrameInput]) -> Vec<(Vec3<T>, Vec3<T>)> {
     frames.iter().map(|f| (v(f.position), v(f.velocity))).collect()
 }
 
+/// Times `move_body` over `frames`, with `gravity` as its second pass
+/// (`None`: one pass, as the summed rows run it).
 fn bench_ours<T: Real>(
     g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     id: &str,
     mesh: &Arc<sweepslide::world::TriangleMesh>,
     radii: [f64; 3],
-    gravity: [f64; 3],
+    gravity: Option<[f64; 3]>,
     frames: &[FrameInput],
     response: Response,
 ) {
     let world = World::<T>::new(mesh.clone()).expect("the mesh fits the backend");
     let body = Ellipsoid::<T>::new(radii).expect("valid radii");
-    let gravity: Vec3<T> = vec3(gravity[0], gravity[1], gravity[2]);
+    let gravity: Option<Vec3<T>> = gravity.map(|g| vec3(g[0], g[1], g[2]));
     let opts = MoveOptions::new(response);
     let inputs = inputs::<T>(frames);
     let mut k = 0;
@@ -295,7 +300,7 @@ fn bench_ours<T: Real>(
         b.iter(|| {
             let (p, v) = &inputs[k % FRAMES];
             k += 1;
-            move_body(&world, &body, black_box(p), black_box(v), Some(&gravity), &opts).expect("finite inputs")
+            move_body(&world, &body, black_box(p), black_box(v), gravity.as_ref(), &opts).expect("finite inputs")
         })
     });
 }
@@ -308,22 +313,22 @@ fn frame_move(c: &mut Criterion) {
     // are `f32` values, the same for both); `f64` replays its own.
     let frames = trajectory::<f32>(&scene, 1, FRAMES);
     let mut g = c.benchmark_group("frame_move");
-    bench_ours::<f32>(&mut g, "robust_f32", &scene.mesh, scene.radii, scene.gravity, &frames, Response::Robust);
+    let gravity = Some(scene.gravity);
+    bench_ours::<f32>(&mut g, "robust_f32", &scene.mesh, scene.radii, gravity, &frames, Response::Robust);
+    // Rapier's input exactly: velocity + gravity as one displacement, one
+    // pass (`f32`-rounded from the same `f64` sum as `rv` rounds it).
+    let one_pass = summed(&frames, scene.gravity);
+    bench_ours::<f32>(&mut g, "robust_f32_summed", &scene.mesh, scene.radii, None, &one_pass, Response::Robust);
     let frames64 = trajectory::<f64>(&scene, 1, FRAMES);
-    bench_ours::<f64>(&mut g, "robust_f64", &scene.mesh, scene.radii, scene.gravity, &frames64, Response::Robust);
-    bench_ours::<f32>(&mut g, "fauerby_f32", &scene.mesh, scene.radii, scene.gravity, &frames, Response::Fauerby);
-    bench_ours::<f32>(&mut g, "linahan_f32", &scene.mesh, scene.radii, scene.gravity, &frames, Response::Linahan);
+    bench_ours::<f64>(&mut g, "robust_f64", &scene.mesh, scene.radii, gravity, &frames64, Response::Robust);
+    bench_ours::<f32>(&mut g, "fauerby_f32", &scene.mesh, scene.radii, gravity, &frames, Response::Fauerby);
+    bench_ours::<f32>(&mut g, "linahan_f32", &scene.mesh, scene.radii, gravity, &frames, Response::Linahan);
 
     let rapier = RapierScene::new(&scene.mesh, TriMeshFlags::empty());
     let queries = rapier.query_pipeline();
     let ball = Ball::new(scene.radii[0] as f32);
-    let moves: Vec<(Pose, Vector)> = frames
-        .iter()
-        .map(|f| {
-            let d = [0, 1, 2].map(|i| f.velocity[i] + scene.gravity[i]);
-            (Pose::from_translation(rv(f.position)), rv(d))
-        })
-        .collect();
+    let moves: Vec<(Pose, Vector)> =
+        one_pass.iter().map(|f| (Pose::from_translation(rv(f.position)), rv(f.velocity))).collect();
     for config in RapierConfig::ALL {
         let controller = config.controller();
         let mut k = 0;

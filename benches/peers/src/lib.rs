@@ -30,6 +30,18 @@ pub struct FrameInput {
     pub velocity: [f64; 3],
 }
 
+/// `frames` with the gravity added to each pushing displacement (in
+/// `f64`): the one displacement per frame that Rapier's `move_shape` takes,
+/// handed to sweepslide's `move_body` without a gravity pass too, so that
+/// both sides get the very same input.
+#[must_use]
+pub fn summed(frames: &[FrameInput], gravity: [f64; 3]) -> Vec<FrameInput> {
+    frames
+        .iter()
+        .map(|f| FrameInput { position: f.position, velocity: [0, 1, 2].map(|i| f.velocity[i] + gravity[i]) })
+        .collect()
+}
+
 /// `count` consecutive frame inputs of `scene` (its start, its motion
 /// program for `seed`, its gravity) taken from a trajectory played by
 /// sweepslide's robust response in `T`, starting with the first frame

@@ -19,7 +19,8 @@
 //!
 //! A last table replays the 256 `terrain:224` frame inputs of the
 //! `frame_move` bench (open loop: every frame from our trajectory's start)
-//! and compares where Rapier and our robust f32 response end.
+//! and compares where Rapier and our robust f32 response end, the latter
+//! both in its two passes and given Rapier's one summed displacement.
 //!
 //! Prints markdown tables. Run:
 //! `cargo run --release --manifest-path benches/peers/Cargo.toml --bin rapier_metrics`
@@ -34,7 +35,7 @@ use sweepslide::lab::scenes::{Steering, build};
 use sweepslide::lab::{Precision, RunConfig, Scene, run};
 use sweepslide::respond::{MoveOptions, Response, move_body};
 use sweepslide::world::World;
-use sweepslide_peers::{RapierConfig, RapierScene, rv, trajectory};
+use sweepslide_peers::{RapierConfig, RapierScene, rv, summed, trajectory};
 
 /// One row of the table.
 struct Row {
@@ -230,6 +231,20 @@ fn terrain_agreement() {
         );
     };
     report("robust f32", &ours);
+    // Rapier's input: velocity + gravity in one pass.
+    let (mut summed_checks, mut summed_contacts) = (0u64, 0usize);
+    let one_pass: Vec<[f64; 3]> = summed(&frames, scene.gravity)
+        .iter()
+        .map(|f| {
+            let p: Vec3<f32> = vec3(f.position[0], f.position[1], f.position[2]);
+            let d: Vec3<f32> = vec3(f.velocity[0], f.velocity[1], f.velocity[2]);
+            let m = move_body(&world32, &body, &p, &d, None, &opts).expect("finite inputs");
+            summed_checks += u64::from(m.trace.iterations);
+            summed_contacts += m.trace.contacts.len();
+            [0, 1, 2].map(|i| f64::from(m.position[i]))
+        })
+        .collect();
+    report("robust f32, summed (one pass)", &one_pass);
     let mut rapier_hits = Vec::new();
     for config in RapierConfig::ALL {
         let controller = config.controller();
@@ -247,7 +262,12 @@ fn terrain_agreement() {
         report(config.name(), &ends);
         rapier_hits.push((config.name(), hits as f64 / n));
     }
-    println!();
+    println!(
+        "\nRobust f32 given velocity + gravity in one pass (Rapier's input): {:.2} collision checks, {:.2} contacts \
+         per frame.",
+        summed_checks as f64 / n,
+        summed_contacts as f64 / n
+    );
     for (name, hits) in rapier_hits {
         println!("{name}: {hits:.2} shape-cast hits (collision events) per frame.");
     }
