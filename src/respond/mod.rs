@@ -308,6 +308,19 @@ fn check_precision<T: Real>(what: &str, v: &Vec3<T>) -> Result<(), Error> {
     }
 }
 
+/// One pass of the response from eSpace `p` by eSpace `w`; notes its
+/// collision checks in [`Trace::pass_iterations`].
+fn pass<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, w: Vec3<T>, options: &MoveOptions) -> Vec3<T> {
+    let before = frame.trace.iterations;
+    let p = match options.response {
+        Response::Fauerby => fauerby::collide_and_slide(frame, p, w, &options.fauerby),
+        Response::Linahan => linahan::sphere_sweep(frame, p, w, &options.linahan),
+        Response::Robust => robust::slide(frame, p, w, &options.robust),
+    };
+    frame.trace.pass_iterations = frame.trace.pass_iterations.max(frame.trace.iterations - before);
+    p
+}
+
 /// Moves `body` from `position` by `velocity` (world space, this frame's
 /// displacement) through `world`, then, if given, by `gravity` in a second
 /// pass (Fauerby's scheme, used by all three responses).
@@ -400,13 +413,16 @@ pub fn move_body<T: Real>(
             continue;
         }
         let vel_e = body.to_espace(vel);
-        let before = frame.trace.iterations;
-        p = match options.response {
-            Response::Fauerby => fauerby::collide_and_slide(&mut frame, p, vel_e, &options.fauerby),
-            Response::Linahan => linahan::sphere_sweep(&mut frame, p, vel_e, &options.linahan),
-            Response::Robust => robust::slide(&mut frame, p, vel_e, &options.robust),
+        // The robust response slides a displacement too long for its
+        // padding in equal parts ([`robust::parts`]).
+        let (parts, piece) = match options.response {
+            Response::Robust => robust::parts(vel_e, &options.robust),
+            Response::Fauerby | Response::Linahan => (1, vel_e),
         };
-        frame.trace.pass_iterations = frame.trace.pass_iterations.max(frame.trace.iterations - before);
+        for _ in 1..parts {
+            p = pass(&mut frame, p, piece.clone(), options);
+        }
+        p = pass(&mut frame, p, piece, options);
     }
     let position = if p == start {
         position.clone()

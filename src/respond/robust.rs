@@ -52,6 +52,10 @@
 //!    displacement's largest coordinate, so `|w| <= sqrt(3) s`), and the
 //!    skin is restored at the end of the pass.
 //!
+//! A pass whose displacement is too long for the padding (thousands of
+//! radii in `f32`) is slid in equal parts, each a pass of its own
+//! ([`parts`]).
+//!
 //! Bound: at most [`RobustOptions::max_iterations`] sweeps per pass (plus one
 //! push-out sweep after a grazing contact, not counted). Each sweep either
 //! ends the pass or adds a plane; once three independent planes are met the
@@ -211,6 +215,43 @@ fn uncapped_padding<T: Real>(
     // The tilt never exceeds the shape factor: most triangles need no more.
     let tilt = if c.shape.to_f64() <= opts.free_tilt { 1.0 } else { opts.tilt_factor(c.tilt()) };
     opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude
+}
+
+/// The most parts [`parts`] splits a pass into: a bound on one move's
+/// work.
+const MAX_PARTS: f64 = 1024.0;
+
+/// The pass displacement `w` (eSpace) as `n` equal parts, each slid as a
+/// pass of its own: `(1, w)` unless the padding that `w`'s largest
+/// coordinate `m` calls for, `padding_ulps u m`, exceeds half the cap
+/// `max_padding` (`m` beyond about `1.7e3` radii in `f32`, `9.4e11` in
+/// `f64`); else the fewest parts (at most 1,024) that keep it under half
+/// the cap, `w / n` each (rounded once per coordinate: the parts' sum is
+/// off from `w` by about `n u |w / n|`, one rounding of `w` itself).
+///
+/// The rounding of a sweep and the tolerances the slide scales with the
+/// displacement's length (the cone's `feasible_ulps u |w|`, the touching
+/// tolerance) grow with `|w|`; the padding grows with it only up to its
+/// cap. A displacement thousands of radii long in one frame then outran
+/// its padding: a probe (twenty-seventh session) found bodies pushed
+/// `6e5` to `1.4e6` radii in one `f32` frame ending up to 0.69 radii inside
+/// the walls of a closed box, 3 of about 13,400 `f32` runs with pushes of
+/// 30 to `3e5` radii per pass (`tests/regressions/respond_hard_pushes.rs`). Precisions whose padding is over half the cap for a
+/// displacement of one radius (below about 13 bits) are not split: no
+/// part would be short enough.
+#[inline]
+pub(crate) fn parts<T: Real>(w: Vec3<T>, opts: &RobustOptions) -> (usize, Vec3<T>) {
+    let per_radius = 2.0 * opts.padding_ulps * T::unit_roundoff();
+    let needs = max_abs(&w, T::zero()).to_f64() * per_radius;
+    if needs > opts.max_padding && per_radius <= opts.max_padding { split(w, needs / opts.max_padding) } else { (1, w) }
+}
+
+/// `w` in `ceil(ratio)` equal parts, at most [`MAX_PARTS`] ([`parts`]).
+#[cold]
+fn split<T: Real>(w: Vec3<T>, ratio: f64) -> (usize, Vec3<T>) {
+    let n = ratio.ceil().min(MAX_PARTS);
+    let n_t = T::c(n);
+    (n as usize, w.map(|x| x / &n_t))
 }
 
 /// The least `s` of [`padding`] at `p`: `max(1, |p|)`.
