@@ -332,26 +332,37 @@ fn small_sphere_pushed_2100_radii_into_a_shallow_bowl_f64() {
     no_frame_capped_or_inside::<f64>(&case);
 }
 
-/// One frame of `radii` from `start` by `velocity`, then `gravity`, in
-/// `T`, through the mesh `vertices`, `triangles`: the body must end
-/// outside every triangle.
-fn one_long_frame_ends_outside<T: Real>(
-    vertices: &[[f64; 3]],
-    triangles: &[[u32; 3]],
+/// One frame through a closed box: the body, its start, and the
+/// velocity and gravity passes.
+struct LongPush {
+    vertices: &'static [[f64; 3]],
+    triangles: &'static [[u32; 3]],
     radii: [f64; 3],
     start: [f64; 3],
     velocity: [f64; 3],
     gravity: [f64; 3],
-) {
-    let mesh = TriangleMesh::new(vertices.to_vec(), triangles.to_vec()).unwrap();
-    let world = World::<T>::new(Arc::new(mesh)).unwrap();
-    let body = Ellipsoid::<T>::new(radii).unwrap();
-    let v = |a: [f64; 3]| vec3::<T>(a[0], a[1], a[2]);
-    let moved =
-        move_body(&world, &body, &v(start), &v(velocity), Some(&v(gravity)), &MoveOptions::new(Response::Robust))
-            .unwrap();
-    let depth = penetration(&world, body.radii(), &moved.position).unwrap_or(f64::NEG_INFINITY);
-    assert!(depth <= 0.0, "{}: penetration {depth:e}", T::name());
+}
+
+impl LongPush {
+    /// Runs the frame in `T`: the body must end outside every triangle.
+    fn ends_outside<T: Real>(&self) {
+        let mesh = TriangleMesh::new(self.vertices.to_vec(), self.triangles.to_vec()).unwrap();
+        let world = World::<T>::new(Arc::new(mesh)).unwrap();
+        let body = Ellipsoid::<T>::new(self.radii).unwrap();
+        let v = |a: [f64; 3]| vec3::<T>(a[0], a[1], a[2]);
+        let options = MoveOptions::new(Response::Robust);
+        let moved =
+            move_body(&world, &body, &v(self.start), &v(self.velocity), Some(&v(self.gravity)), &options).unwrap();
+        let depth = penetration(&world, body.radii(), &moved.position).unwrap_or(f64::NEG_INFINITY);
+        assert!(depth <= 0.0, "{}: penetration {depth:e}", T::name());
+    }
+
+    /// [`LongPush::ends_outside`] in `f32`, `Mpfr<24>` and `f64`.
+    fn ends_outside_in_each_precision(&self) {
+        self.ends_outside::<f32>();
+        self.ends_outside::<sweepslide::Mpfr<24>>();
+        self.ends_outside::<f64>();
+    }
 }
 
 /// A flat ellipsoid (radii `0.0134, 1, 1`) pushed `1.4e6` eSpace radii
@@ -359,38 +370,30 @@ fn one_long_frame_ends_outside<T: Real>(
 /// nearly flat fold: ended 0.62 inside a wall in `f32`.
 #[test]
 fn flat_ellipsoid_pushed_a_million_radii_in_a_closed_box() {
-    let case = |f: fn(&[[f64; 3]], &[[u32; 3]], [f64; 3], [f64; 3], [f64; 3], [f64; 3])| {
-        f(
-            &BOX_A_VERTICES,
-            &BOX_A_TRIANGLES,
-            [1.34067228063941e-2, 1.0, 1.0],
-            [-3.216404318809509e-1, -3.5293967723846436, 6.911636590957642e-1],
-            [19366.90318846275, 289206.0, -107063.76680629617],
-            [0.0; 3],
-        );
-    };
-    case(one_long_frame_ends_outside::<f32>);
-    case(one_long_frame_ends_outside::<sweepslide::Mpfr<24>>);
-    case(one_long_frame_ends_outside::<f64>);
+    LongPush {
+        vertices: &BOX_A_VERTICES,
+        triangles: &BOX_A_TRIANGLES,
+        radii: [1.34067228063941e-2, 1.0, 1.0],
+        start: [-3.216404318809509e-1, -3.5293967723846436, 6.911636590957642e-1],
+        velocity: [19366.90318846275, 289206.0, -107063.76680629617],
+        gravity: [0.0; 3],
+    }
+    .ends_outside_in_each_precision();
 }
 
 /// A unit sphere pushed `1e4` radii and then, by gravity, `6.3e5` radii in
 /// one frame inside another closed box: ended 0.63 inside a wall in `f32`.
 #[test]
 fn unit_sphere_falling_six_hundred_thousand_radii_in_a_closed_box() {
-    let case = |f: fn(&[[f64; 3]], &[[u32; 3]], [f64; 3], [f64; 3], [f64; 3], [f64; 3])| {
-        f(
-            &BOX_B_VERTICES,
-            &BOX_B_TRIANGLES,
-            [1.0; 3],
-            [8.86711061000824e-1, -2.385127305984497, -3.345937490463257],
-            [-821.8749975734619, 8004.53125, 5245.030878899847],
-            [-74888.4609375, 586954.625, 164156.96875],
-        );
-    };
-    case(one_long_frame_ends_outside::<f32>);
-    case(one_long_frame_ends_outside::<sweepslide::Mpfr<24>>);
-    case(one_long_frame_ends_outside::<f64>);
+    LongPush {
+        vertices: &BOX_B_VERTICES,
+        triangles: &BOX_B_TRIANGLES,
+        radii: [1.0; 3],
+        start: [8.86711061000824e-1, -2.385127305984497, -3.345937490463257],
+        velocity: [-821.8749975734619, 8004.53125, 5245.030878899847],
+        gravity: [-74888.4609375, 586954.625, 164156.96875],
+    }
+    .ends_outside_in_each_precision();
 }
 
 /// The probe's first box (duplicate vertices merged): a random closed box,
