@@ -57,7 +57,7 @@ use std::sync::Arc;
 use sweepslide::detect::{Candidate, DetectOptions, Hit, sweep_robust};
 use sweepslide::geom::{Ellipsoid, Triangle, Vec3, closest_point_on_triangle, vec3};
 use sweepslide::lab::metrics::penetration;
-use sweepslide::respond::{MoveOptions, Response, RobustOptions, move_body};
+use sweepslide::respond::{MoveOptions, Response, RobustOptions, move_body, robust};
 use sweepslide::world::{TriangleMesh, World};
 use sweepslide::{Mpfr, Real};
 
@@ -710,17 +710,24 @@ pub fn prepare<T: Real>(case: &MoveCase) -> Result<Prepared<T>, Skip> {
     Ok(Prepared { world, body, start })
 }
 
-/// The most collision checks the robust response may run in one frame:
-/// `RobustOptions::max_iterations` per pass (one pass per non-zero
-/// displacement, velocity then gravity). `src/respond/robust.rs`: every
+/// The most collision checks the robust response may run in one frame of
+/// `body`: `RobustOptions::max_iterations` per pass (one pass per non-zero
+/// displacement, velocity then gravity, each slid in
+/// [`sweepslide::respond::robust::parts`] parts, a pass each; one part
+/// except for displacements of thousands of radii in `f32`). `src/respond/robust.rs`: every
 /// sweep of `slide` counts one iteration and its loop runs at most
 /// `max_iterations` times; the push-out sweeps (after a grazing contact,
 /// and restoring the skin after a free move) and the depenetration at the
 /// start of the move are not collision checks and are not counted.
 #[must_use]
-pub fn iteration_bound<T: Real>(velocity: &Vec3<T>, gravity: &Vec3<T>) -> u32 {
-    let passes = [velocity, gravity].iter().filter(|v| v.iter().any(|x| *x != T::zero())).count() as u32;
-    passes * RobustOptions::default().max_iterations
+pub fn iteration_bound<T: Real>(body: &Ellipsoid<T>, velocity: &Vec3<T>, gravity: &Vec3<T>) -> u32 {
+    let opts = RobustOptions::default();
+    let passes: usize = [velocity, gravity]
+        .iter()
+        .filter(|v| v.iter().any(|x| *x != T::zero()))
+        .map(|v| robust::parts(&body.to_espace(v), &opts))
+        .sum();
+    passes as u32 * opts.max_iterations
 }
 
 fn f64s<T: Real>(v: &Vec3<T>) -> [f64; 3] {
@@ -745,7 +752,7 @@ pub fn play<T: Real>(case: &MoveCase, prepared: &Prepared<T>, response: Response
         let vel = vec3::<T>(frame.velocity[0], frame.velocity[1], frame.velocity[2]);
         let gravity = frame.gravity.map(|g| vec3::<T>(g[0], g[1], g[2]));
         let zero = Vec3::<T>::zeros();
-        let bound = iteration_bound(&vel, gravity.as_ref().unwrap_or(&zero));
+        let bound = iteration_bound(&prepared.body, &vel, gravity.as_ref().unwrap_or(&zero));
         let fail = |failure: Failure, to: [f64; 3]| Some(FrameFailure { frame: k, from: f64s(&pos), to, failure });
         if response == Response::Robust && k > 0 && squeezed::<T>(case, &f64s(&pos), k, SLOT_OPPOSED) {
             return None;

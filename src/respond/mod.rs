@@ -415,9 +415,15 @@ pub fn move_body<T: Real>(
         let vel_e = body.to_espace(vel);
         // The robust response slides a displacement too long for its
         // padding in equal parts ([`robust::parts`]).
-        let (parts, piece) = match options.response {
-            Response::Robust => robust::parts(vel_e, &options.robust),
-            Response::Fauerby | Response::Linahan => (1, vel_e),
+        let parts = match options.response {
+            Response::Robust => robust::parts(&vel_e, &options.robust),
+            Response::Fauerby | Response::Linahan => 1,
+        };
+        let piece = if parts == 1 {
+            vel_e
+        } else {
+            let n = T::c(parts as f64);
+            vel_e.map(|x| x / &n)
         };
         for _ in 1..parts {
             p = pass(&mut frame, p, piece.clone(), options);

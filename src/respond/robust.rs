@@ -219,15 +219,16 @@ fn uncapped_padding<T: Real>(
 
 /// The most parts [`parts`] splits a pass into: a bound on one move's
 /// work.
-const MAX_PARTS: f64 = 1024.0;
+pub const MAX_PARTS: usize = 1024;
 
-/// The pass displacement `w` (eSpace) as `n` equal parts, each slid as a
-/// pass of its own: `(1, w)` unless the padding that `w`'s largest
-/// coordinate `m` calls for, `padding_ulps u m`, exceeds half the cap
-/// `max_padding` (`m` beyond about `1.7e3` radii in `f32`, `9.4e11` in
-/// `f64`); else the fewest parts (at most 1,024) that keep it under half
-/// the cap, `w / n` each (rounded once per coordinate: the parts' sum is
-/// off from `w` by about `n u |w / n|`, one rounding of `w` itself).
+/// How many equal parts [`crate::respond::move_body`] slides a pass of
+/// eSpace displacement `w` in, each a pass of its own: 1 unless the
+/// padding that `w`'s largest coordinate `m` calls for, `padding_ulps u m`,
+/// exceeds half the cap `max_padding` (`m` beyond about `1.7e3` radii in
+/// `f32`, `9.4e11` in `f64`); else the fewest parts (at most
+/// [`MAX_PARTS`]) that keep it under half the cap. Each part is `w / n`
+/// (rounded once per coordinate: the parts' sum is off from `w` by about
+/// `n u |w / n|`, one rounding of `w` itself).
 ///
 /// The rounding of a sweep and the tolerances the slide scales with the
 /// displacement's length (the cone's `feasible_ulps u |w|`, the touching
@@ -236,22 +237,22 @@ const MAX_PARTS: f64 = 1024.0;
 /// its padding: a probe (twenty-seventh session) found bodies pushed
 /// `6e5` to `1.4e6` radii in one `f32` frame ending up to 0.69 radii inside
 /// the walls of a closed box, 3 of about 13,400 `f32` runs with pushes of
-/// 30 to `3e5` radii per pass (`tests/regressions/respond_hard_pushes.rs`). Precisions whose padding is over half the cap for a
-/// displacement of one radius (below about 13 bits) are not split: no
-/// part would be short enough.
+/// 30 to `3e5` radii per pass (`tests/regressions/respond_hard_pushes.rs`).
+/// Precisions whose padding is over half the cap for a displacement of one
+/// radius (below about 13 bits) are not split: no part would be short
+/// enough.
 #[inline]
-pub(crate) fn parts<T: Real>(w: Vec3<T>, opts: &RobustOptions) -> (usize, Vec3<T>) {
+#[must_use]
+pub fn parts<T: Real>(w: &Vec3<T>, opts: &RobustOptions) -> usize {
     let per_radius = 2.0 * opts.padding_ulps * T::unit_roundoff();
-    let needs = max_abs(&w, T::zero()).to_f64() * per_radius;
-    if needs > opts.max_padding && per_radius <= opts.max_padding { split(w, needs / opts.max_padding) } else { (1, w) }
+    let needs = max_abs(w, T::zero()).to_f64() * per_radius;
+    if needs > opts.max_padding && per_radius <= opts.max_padding { count_parts(needs / opts.max_padding) } else { 1 }
 }
 
-/// `w` in `ceil(ratio)` equal parts, at most [`MAX_PARTS`] ([`parts`]).
+/// `ceil(ratio)`, at most [`MAX_PARTS`] ([`parts`]).
 #[cold]
-fn split<T: Real>(w: Vec3<T>, ratio: f64) -> (usize, Vec3<T>) {
-    let n = ratio.ceil().min(MAX_PARTS);
-    let n_t = T::c(n);
-    (n as usize, w.map(|x| x / &n_t))
+fn count_parts(ratio: f64) -> usize {
+    ratio.ceil().min(MAX_PARTS as f64) as usize
 }
 
 /// The least `s` of [`padding`] at `p`: `max(1, |p|)`.
