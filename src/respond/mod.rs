@@ -180,7 +180,8 @@ pub struct Trace<T: Real> {
     /// Collision checks run (calls to the world query), all passes together.
     pub iterations: u32,
     /// The most collision checks of one pass (the velocity's or the
-    /// gravity's).
+    /// gravity's; of one part, where the robust response slides a long
+    /// pass in parts, [`robust::parts`]).
     pub pass_iterations: u32,
     /// The contacts met, in order (the first four stored inline: a move
     /// that meets no more allocates nothing).
