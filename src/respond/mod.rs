@@ -186,7 +186,8 @@ pub struct Trace<T: Real> {
     /// The contacts met, in order (the first four stored inline: a move
     /// that meets no more allocates nothing).
     pub contacts: SmallVec<[Contact<T>; 4]>,
-    /// Why the last pass stopped.
+    /// Why the last pass (the last part of a pass slid in parts,
+    /// [`robust::parts`]) stopped.
     pub stop: StopReason,
     /// The total length (eSpace) of the pushes with which the robust
     /// response moved the body out of geometry it started embedded in
