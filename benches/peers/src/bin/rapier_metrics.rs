@@ -35,7 +35,7 @@ use sweepslide::lab::scenes::{Steering, build};
 use sweepslide::lab::{Precision, RunConfig, Scene, run};
 use sweepslide::respond::{MoveOptions, Response, move_body};
 use sweepslide::world::World;
-use sweepslide_peers::{RapierConfig, RapierScene, rv, summed, trajectory};
+use sweepslide_peers::{FrameInput, RapierConfig, RapierScene, rv, summed, trajectory};
 
 /// One row of the table.
 struct Row {
@@ -171,27 +171,40 @@ fn terrain_agreement() {
     let rapier = RapierScene::new(&scene.mesh, TriMeshFlags::empty());
     let queries = rapier.query_pipeline();
     let ball = Ball::new(scene.radii[0] as f32);
-    let (mut candidates, mut checks, mut contacts) = (0usize, 0u64, 0usize);
+    // Our robust f32 move over `inputs` (with `gravity` as a second pass,
+    // or none): the end positions, collision checks and contacts.
+    let replay = |inputs: &[FrameInput], gravity: Option<&Vec3<f32>>| {
+        let (mut checks, mut contacts) = (0u64, 0usize);
+        let ends: Vec<[f64; 3]> = inputs
+            .iter()
+            .map(|f| {
+                let p: Vec3<f32> = vec3(f.position[0], f.position[1], f.position[2]);
+                let v: Vec3<f32> = vec3(f.velocity[0], f.velocity[1], f.velocity[2]);
+                let m = move_body(&world32, &body, &p, &v, gravity, &opts).expect("finite inputs");
+                checks += u64::from(m.trace.iterations);
+                contacts += m.trace.contacts.len();
+                [0, 1, 2].map(|i| f64::from(m.position[i]))
+            })
+            .collect();
+        (ends, checks, contacts)
+    };
+    let (ours, checks, contacts) = replay(&frames, Some(&gravity));
+    // The box `move_body` gathers its candidates in: everywhere the body
+    // reaches by the velocity then gravity, grown by 5%.
     let mut scratch = Vec::new();
-    let ours: Vec<[f64; 3]> = frames
+    let candidates: usize = frames
         .iter()
         .map(|f| {
             let p: Vec3<f32> = vec3(f.position[0], f.position[1], f.position[2]);
             let v: Vec3<f32> = vec3(f.velocity[0], f.velocity[1], f.velocity[2]);
-            let m = move_body(&world32, &body, &p, &v, Some(&gravity), &opts).expect("finite inputs");
-            // The box `move_body` gathers its candidates in: everywhere the
-            // body reaches by the velocity then gravity, grown by 5%.
             let corners = [p, p + v, p + gravity, p + v + gravity];
             let grow = body.radii() * 1.05;
             let lo = Vec3::from_fn(|i, _| corners.iter().map(|c| c[i]).fold(f32::INFINITY, f32::min) - grow[i]);
             let hi = Vec3::from_fn(|i, _| corners.iter().map(|c| c[i]).fold(f32::NEG_INFINITY, f32::max) + grow[i]);
             world32.candidates(&lo, &hi, &mut scratch);
-            candidates += scratch.len();
-            checks += u64::from(m.trace.iterations);
-            contacts += m.trace.contacts.len();
-            [0, 1, 2].map(|i| f64::from(m.position[i]))
+            scratch.len()
         })
-        .collect();
+        .sum();
     let n = frames.len() as f64;
     println!("\n### terrain:224, the 256 `frame_move` inputs, open loop\n");
     println!(
@@ -232,18 +245,7 @@ fn terrain_agreement() {
     };
     report("robust f32", &ours);
     // Rapier's input: velocity + gravity in one pass.
-    let (mut summed_checks, mut summed_contacts) = (0u64, 0usize);
-    let one_pass: Vec<[f64; 3]> = summed(&frames, scene.gravity)
-        .iter()
-        .map(|f| {
-            let p: Vec3<f32> = vec3(f.position[0], f.position[1], f.position[2]);
-            let d: Vec3<f32> = vec3(f.velocity[0], f.velocity[1], f.velocity[2]);
-            let m = move_body(&world32, &body, &p, &d, None, &opts).expect("finite inputs");
-            summed_checks += u64::from(m.trace.iterations);
-            summed_contacts += m.trace.contacts.len();
-            [0, 1, 2].map(|i| f64::from(m.position[i]))
-        })
-        .collect();
+    let (one_pass, summed_checks, summed_contacts) = replay(&summed(&frames, scene.gravity), None);
     report("robust f32, summed (one pass)", &one_pass);
     let mut rapier_hits = Vec::new();
     for config in RapierConfig::ALL {
