@@ -832,6 +832,12 @@ fn values_given_for_a_built_in_scene_are_rounded_to_f32_like_its_own() {
     let out = sweepslide(&["run", "--scene", "floor", "--start=0,1e39,0", "--frames", "1"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--start: 1e39 rounds to infinity in f32"));
+    // An offset is added before the rounding; one beyond `f32`'s range is
+    // refused by name (it used to be reported as a mesh without a valid
+    // triangle).
+    let out = sweepslide(&["run", "--scene", "floor", "--offset=1e39,0,0", "--frames", "1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--offset: 1e39 rounds to infinity in f32"));
 }
 
 /// A run that reaches a NaN position has no jitter to speak of: it is NaN

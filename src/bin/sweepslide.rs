@@ -272,6 +272,18 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
         scene = scene.with_radii(r);
     }
     if let Some(o) = args.offset {
+        // The offset itself is not rounded (the shifted coordinates are),
+        // but one beyond `f32`'s range leaves no finite vertex: refused
+        // here, by name, rather than as a mesh without valid triangles.
+        if let Some(x) = o.iter().find(|x| built_in && (**x as f32).is_infinite()) {
+            return Err(Error::InvalidArgument {
+                what: "--offset".into(),
+                message: format!(
+                    "{x:e} rounds to infinity in f32, to which a built-in scene's coordinates are rounded (so that \
+                     every precision runs the same ones)"
+                ),
+            });
+        }
         scene = scene.offset(o, built_in)?;
         warn_skipped(&scene, &format!("the scene at offset {},{},{}", o[0], o[1], o[2]));
     }
