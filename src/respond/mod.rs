@@ -139,7 +139,7 @@ impl MoveOptions {
 }
 
 /// The most sweeps, push-out rounds or recursion levels any option may ask
-/// for (the defaults are 4 to 8): a bound on one move's work.
+/// for (the defaults are 5 to 8): a bound on one move's work.
 pub const MAX_ROUNDS: u32 = 1024;
 
 /// Why a pass of the response stopped.

@@ -114,8 +114,11 @@ pub struct RobustOptions {
     pub free_tilt: f64,
     /// Padding per unit of `u * |start|` (final-position rounding; default 4).
     pub position_ulps: f64,
-    /// Upper bound of the padding (default 0.01), reached only at very low
-    /// precision or very far from the origin.
+    /// Upper bound of the padding (default 0.01). `48 u s` reaches it at
+    /// very low precision, far from the origin, beside triangles larger
+    /// than about `3.5e3` radii in `f32` (`1.9e12` in `f64`) and on pushes
+    /// so long that even [`parts`] cannot bring them within it
+    /// (`docs/findings.md`, "The robust response: known limits").
     pub max_padding: f64,
     /// Two planes whose normals' cross product is shorter than
     /// `parallel_ulps * u` count as parallel (default 1024).
