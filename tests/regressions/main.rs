@@ -15,6 +15,7 @@ mod respond_far_origin;
 mod respond_hard_pushes;
 mod respond_huge_wall_slots;
 mod respond_parallel_planes;
+mod respond_seam_hits;
 mod respond_shallow_climbs;
 mod respond_shallow_folds;
 mod world_reach;

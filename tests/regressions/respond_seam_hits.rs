@@ -1,0 +1,80 @@
+//! Pushes straight into the seam of a flat, tessellated wall, found by a
+//! game developer's review in the twenty-eighth session. The wall's two
+//! triangles share a diagonal through the point the body's centre heads
+//! for; a floor under the body lifts it by its padding, so the centre runs
+//! a hair beside the diagonal. The neighbour's face and the diagonal edge
+//! are then reached at the same time up to rounding, and the edge won the
+//! tie (the lower triangle index) with its geometric direction: tilted by
+//! the centre's offset from the seam, `1.2e-4` in `f32`, not by a rounding.
+//! The slide along that tilted plane carried the rest of the push sideways:
+//! a push of 200 radii ended `0.014` radii off along the wall, and one of
+//! `1.8e6` radii, slid in 1,024 parts (`robust::parts`), climbed the wall
+//! diagonally, 150 radii up and across, over its top. An inactive edge or
+//! vertex reached during a sweep with the centre over the face now reports
+//! the face normal, as a touch at the start always did.
+
+use std::sync::Arc;
+use sweepslide::Real;
+use sweepslide::geom::{Ellipsoid, Vec3, vec3};
+use sweepslide::lab::metrics::penetration;
+use sweepslide::respond::{MoveOptions, Response, move_body};
+use sweepslide::world::{TriangleMesh, World};
+
+/// A 10 x 10 wall in the plane `x = 20` and a 60 x 60 floor at `y = -0.5`,
+/// two triangles each. The wall is split by its diagonal through
+/// `(20, 0, 0)`; with `fan`, into four triangles around that point
+/// instead (an inactive vertex there).
+fn wall_and_floor(fan: bool) -> TriangleMesh {
+    let mut vertices = vec![[20.0, -5.0, -5.0], [20.0, -5.0, 5.0], [20.0, 5.0, 5.0], [20.0, 5.0, -5.0]];
+    let mut triangles = if fan {
+        vertices.push([20.0, 0.0, 0.0]);
+        vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]
+    } else {
+        vec![[0, 1, 2], [0, 2, 3]]
+    };
+    let floor = vertices.len() as u32;
+    vertices.extend([[-30.0, -0.5, -30.0], [-30.0, -0.5, 30.0], [30.0, -0.5, 30.0], [30.0, -0.5, -30.0]]);
+    triangles.extend([[floor, floor + 1, floor + 2], [floor, floor + 2, floor + 3]]);
+    TriangleMesh::new(vertices, triangles).unwrap()
+}
+
+/// A sphere of radius 0.5 resting on the floor at the origin, pushed by
+/// `push` along `x` in one frame, in `T`: it must stop at the wall where it
+/// is, neither sliding along the wall by more than `16 u` of the push (the
+/// two planes' normals are exact) nor entering anything.
+fn stops_square_at_the_wall<T: Real>(fan: bool, push: f64) {
+    let world = World::<T>::new(Arc::new(wall_and_floor(fan))).unwrap();
+    let body = Ellipsoid::<T>::sphere(0.5).unwrap();
+    let start: Vec3<T> = vec3(0.0, 0.0, 0.0);
+    let moved =
+        move_body(&world, &body, &start, &vec3(push, 0.0, 0.0), None, &MoveOptions::new(Response::Robust)).unwrap();
+    let [x, y, z] = [0, 1, 2].map(|i| moved.position[i].to_f64());
+    let drift = 16.0 * T::unit_roundoff() * push;
+    let what = format!("{} fan {fan} push {push:e}: ended at ({x}, {y}, {z})", T::name());
+    assert!(z.abs() <= drift, "{what}: slid along the wall");
+    // The floor's padding lifts it by far less than this.
+    assert!(y.abs() <= 1e-3, "{what}: slid up or down the wall");
+    assert!((19.49..19.5).contains(&x), "{what}: not at the wall");
+    let depth = penetration(&world, body.radii(), &moved.position).unwrap_or(f64::NEG_INFINITY);
+    assert!(depth <= 0.0, "{what}: penetration {depth:e}");
+}
+
+/// Pushes of 200 radii (one pass) and `1.8e6` radii (1,024 parts) into the
+/// diagonal seam: in `f32` they ended `0.014` radii and 150 radii off.
+#[test]
+fn a_push_into_a_walls_diagonal_seam_stops_square() {
+    for push in [100.0, 9e5] {
+        stops_square_at_the_wall::<f32>(false, push);
+        stops_square_at_the_wall::<sweepslide::Mpfr<24>>(false, push);
+        stops_square_at_the_wall::<f64>(false, push);
+    }
+}
+
+/// The same into the inactive vertex of a fan of four wall triangles.
+#[test]
+fn a_push_into_an_inactive_vertex_of_a_wall_stops_square() {
+    for push in [100.0, 9e5] {
+        stops_square_at_the_wall::<f32>(true, push);
+        stops_square_at_the_wall::<f64>(true, push);
+    }
+}
