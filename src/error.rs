@@ -69,7 +69,9 @@ pub enum Error {
         /// The largest accepted.
         max: u32,
     },
-    /// A motion with zero velocity and no gravity: nothing would move.
+    /// A lab scene with zero velocity and no gravity: nothing would move
+    /// (the lab's `run` refuses it). [`crate::respond::move_body`] never returns
+    /// it: a still body is a valid move.
     #[error("velocity and gravity are both zero: nothing to simulate")]
     ZeroVelocity,
     /// A malformed Wavefront OBJ file.

@@ -945,6 +945,49 @@ fn overflowing_move_f64() {
     overflowing_move::<f64>(1e160, 1e-150);
 }
 
+/// A pass longer than the robust response can slide in
+/// `robust::MAX_PARTS` parts is refused, naming the velocity or the
+/// gravity (a probe, twenty-eighth session: unsplit, `2e7` radii in `f32`
+/// went through a wall and ended `2.5e6` radii away); just within, it
+/// runs, and the faithful responses, which claim nothing there, run too.
+fn too_long_for_parts<T: sweepslide::Real>() {
+    use sweepslide::respond::{MoveOptions, Response, RobustOptions, move_body, robust};
+    let opts = RobustOptions::default();
+    let limit = robust::MAX_PARTS as f64 * opts.max_padding / (2.0 * opts.padding_ulps * T::unit_roundoff());
+    let world = floor_world::<T>();
+    let body = Ellipsoid::<T>::sphere(0.5).unwrap();
+    let p = vec3::<T>(0.0, 1.0, 0.0);
+    let robust = MoveOptions::new(Response::Robust);
+    let beyond = vec3::<T>(0.0, 0.0, 0.5 * 1.01 * limit);
+    let within = vec3::<T>(0.0, 0.0, 0.5 * 0.99 * limit);
+    let refused = |v: Option<&_>, g: Option<&_>, name: &str| {
+        let r = move_body(&world, &body, &p, v.unwrap_or(&vec3(0.0, 0.0, 0.0)), g, &robust);
+        assert!(
+            matches!(r, Err(Error::InvalidArgument { ref what, ref message })
+                if what == name && message.contains("split the motion")),
+            "{}: {r:?}",
+            T::name()
+        );
+    };
+    refused(Some(&beyond), None, "velocity");
+    refused(None, Some(&beyond), "gravity");
+    let moved = move_body(&world, &body, &p, &within, None, &robust).unwrap();
+    assert!(moved.position[2].to_f64() > 0.9 * 0.5 * limit, "{}: {moved:?}", T::name());
+    for response in [Response::Fauerby, Response::Linahan] {
+        assert!(move_body(&world, &body, &p, &beyond, None, &MoveOptions::new(response)).is_ok());
+    }
+}
+
+#[test]
+fn a_push_too_long_for_its_parts_is_refused_f32() {
+    too_long_for_parts::<f32>();
+}
+
+#[test]
+fn a_push_too_long_for_its_parts_is_refused_f64() {
+    too_long_for_parts::<f64>();
+}
+
 // ---------------------------------------------------------------------------
 // The lab's scenes and runs
 // ---------------------------------------------------------------------------

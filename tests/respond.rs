@@ -641,3 +641,39 @@ fn non_finite_input_is_an_error<T: Real>() {
         }
     }
 }
+
+/// A flat ellipsoid dropped onto a 20-degree ramp: the contact's normal in
+/// the trace is in eSpace, leaning about 9 degrees from the vertical, and
+/// `Ellipsoid::normal_from_espace` gives the ramp's world normal (a game
+/// developer's review, twenty-eighth session: a slope test on the eSpace
+/// normal would take a 60-degree slope for a walkable one).
+fn contact_normals_map_back_to_the_world<T: Real>() {
+    use std::sync::Arc;
+    use sweepslide::world::TriangleMesh;
+    let angle = 20f64.to_radians();
+    let (c, s) = (angle.cos(), angle.sin());
+    // The plane y = x tan(20 deg), spanning x and z in [-10, 10].
+    let corner = |x: f64, z: f64| [x * c, x * s, z];
+    let mesh = TriangleMesh::new(
+        vec![corner(-10.0, -10.0), corner(-10.0, 10.0), corner(10.0, 10.0), corner(10.0, -10.0)],
+        vec![[0, 1, 2], [0, 2, 3]],
+    )
+    .unwrap();
+    let world = World::<T>::new(Arc::new(mesh)).unwrap();
+    let body = Ellipsoid::<T>::new([0.4, 0.9, 0.4]).unwrap();
+    let moved =
+        move_body(&world, &body, &v([0.0, 1.5, 0.0]), &v([0.0, -2.0, 0.0]), None, &MoveOptions::new(Response::Robust))
+            .unwrap();
+    let contact = moved.trace.contacts.first().expect("it lands on the ramp");
+    let espace = f64s(&contact.hit.normal);
+    let lean = espace[1].acos().to_degrees();
+    assert!((8.0..10.0).contains(&lean), "{}: the eSpace normal leans {lean} degrees", T::name());
+    let world_normal = f64s(&body.normal_from_espace(&contact.hit.normal));
+    let expected = [-s, c, 0.0];
+    let off = (0..3).map(|i| (world_normal[i] - expected[i]).abs()).fold(0.0, f64::max);
+    assert!(off <= 64.0 * T::unit_roundoff(), "{}: {world_normal:?} against {expected:?}", T::name());
+}
+
+per_backend! {
+    contact_normals_map_back => contact_normals_map_back_to_the_world;
+}

@@ -714,7 +714,8 @@ pub fn prepare<T: Real>(case: &MoveCase) -> Result<Prepared<T>, Skip> {
 /// `body`: `RobustOptions::max_iterations` per pass (one pass per non-zero
 /// displacement, velocity then gravity, each slid in
 /// [`sweepslide::respond::robust::parts`] parts, a pass each; one part
-/// except for displacements of thousands of radii in `f32`). `src/respond/robust.rs`: every
+/// except for displacements of thousands of radii in `f32`; a pass too long
+/// for any number of parts counts one, its move being refused). `src/respond/robust.rs`: every
 /// sweep of `slide` counts one iteration and its loop runs at most
 /// `max_iterations` times; the push-out sweeps (after a grazing contact,
 /// and restoring the skin after a free move) and the depenetration at the
@@ -725,7 +726,7 @@ pub fn iteration_bound<T: Real>(body: &Ellipsoid<T>, velocity: &Vec3<T>, gravity
     let passes: usize = [velocity, gravity]
         .iter()
         .filter(|v| v.iter().any(|x| *x != T::zero()))
-        .map(|v| robust::parts(&body.to_espace(v), &opts))
+        .map(|v| robust::parts(&body.to_espace(v), &opts).unwrap_or(1))
         .sum();
     passes as u32 * opts.max_iterations
 }

@@ -17,8 +17,8 @@ pub use sphere_triangle::{
 use sphere_triangle::{SweptBox, sweep_robust_with_speed};
 
 use crate::error::not_negative;
-use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, cross, is_finite, max_abs, norm, norm_squared, normalize};
-use crate::world::{ActiveFeatures, World};
+use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, cross, dot, is_finite, max_abs, norm, norm_squared};
+use crate::world::{ActiveFeatures, INTERNAL_EDGE_DEGREES, World};
 use crate::{Error, Real};
 use smallvec::SmallVec;
 
@@ -443,6 +443,18 @@ impl<T: Real> Neighbourhood<T> {
 /// contact a few `u s k` later (a review measured 138 of a million grazing
 /// pairs in `f32`, each within `9.5 u s k`; before the face contact's
 /// pruning considered its window, about 4,500).
+///
+/// One exception, robust only: an inactive (internal) edge or vertex met at
+/// `t > 0` and the face of a triangle around it, met within the touching
+/// tolerance of the same time ([`seam_window`], [`seam_face`]), give that
+/// face's hit at the earlier of the two times. On a flat seam hit head-on the two
+/// tie up to rounding, and the edge's geometric direction is tilted by the
+/// square root of the distance the rounding hides, not by a rounding: as
+/// the slide's plane it carried the rest of a push sideways (a review,
+/// twenty-eighth session: `0.014` radii along a wall after a push of 200
+/// radii in `f32`, `tests/regressions/respond_seam_hits.rs`). Where no
+/// face is met so soon (the ridge of a gently convex fold hit head-on) the
+/// edge's direction is the constraint and stays.
 #[must_use]
 pub fn earliest_hit<'a, T: Real + 'a>(
     detection: Detection,
@@ -451,26 +463,96 @@ pub fn earliest_hit<'a, T: Real + 'a>(
     vel: &Vec3<T>,
     opts: &DetectOptions,
 ) -> Option<Hit<T>> {
-    let mut best: Option<Hit<T>> = None;
+    let mut best: Option<(Hit<T>, &'a Candidate<T>)> = None;
+    // The robust sweeps' pruning time: the best time, or past it by the
+    // window within which a face would stand in for the best hit.
+    let mut limit: Option<T> = None;
     let swept = SweptBox::new(base, vel);
     for c in triangles {
-        let limit = best.as_ref().map(|b| &b.t);
         let hit = match detection {
             Detection::Fauerby => sweep_fauerby(&c.triangle, base, vel, c.index),
             Detection::Robust if swept.misses(c) => None,
-            Detection::Robust => sweep_robust_with_speed(c, base, vel, &swept.speed, opts, limit),
+            Detection::Robust => sweep_robust_with_speed(c, base, vel, &swept.speed, opts, limit.as_ref()),
         };
-        if let Some(h) = hit {
-            let better = match &best {
-                None => true,
-                Some(b) => h.t < b.t || (h.t == b.t && h.triangle < b.triangle),
-            };
-            if better {
-                best = Some(h);
-            }
-        }
+        let Some(h) = hit else { continue };
+        let next = match best.take() {
+            None => (h, c),
+            Some((b, bc)) => match seam_face(detection, (&b, bc), (&h, c), base, &swept.speed, opts) {
+                Some(face) => face,
+                None if h.t < b.t || (h.t == b.t && h.triangle < b.triangle) => (h, c),
+                None => (b, bc),
+            },
+        };
+        limit = Some(match seam_window(detection, &next.0, next.1, base, &swept.speed, opts) {
+            Some(w) => next.0.t.clone() + w,
+            None => next.0.t.clone(),
+        });
+        best = Some(next);
     }
-    best
+    best.map(|(h, _)| h)
+}
+
+/// For a robust hit `h` of candidate `c` on an inactive edge or vertex at
+/// `t > 0`, the window of time within which a face of a triangle sharing
+/// that feature stands in for it ([`earliest_hit`]): the touching
+/// tolerance `opts.touch_ulps u s` (`s` the magnitude of the contact point
+/// relative to `base`, at least 1) over the speed `speed`. `None` for any
+/// other hit.
+fn seam_window<T: Real>(
+    detection: Detection,
+    h: &Hit<T>,
+    c: &Candidate<T>,
+    base: &Vec3<T>,
+    speed: &T,
+    opts: &DetectOptions,
+) -> Option<T> {
+    let seam = detection == Detection::Robust
+        && h.feature != Feature::Face
+        && h.t > T::zero()
+        && !sphere_triangle::is_active(h.feature, c.active);
+    seam.then(|| {
+        let s = max_abs(&(&h.point - base), T::one());
+        T::c(opts.touch_ulps * T::unit_roundoff()) * s / speed
+    })
+}
+
+/// The face hit that stands in for a seam hit ([`earliest_hit`]): of the
+/// two hits `a` and `b` (each with its candidate), one a face and the
+/// other an inactive edge or vertex met at `t > 0` within [`seam_window`]
+/// of it, the face's hit at the earlier of the two times, if the face's
+/// triangle shares a vertex of that feature (bit for bit: candidates of
+/// one neighbourhood are mapped from the same world vertices; an edge met
+/// at its end ties with the faces around that end) and its normal lies
+/// within the internal-edge angle ([`INTERNAL_EDGE_DEGREES`]) of the
+/// feature's direction (a wall met at a corner beside a seam keeps its
+/// own hit).
+fn seam_face<'a, T: Real>(
+    detection: Detection,
+    a: (&Hit<T>, &'a Candidate<T>),
+    b: (&Hit<T>, &'a Candidate<T>),
+    base: &Vec3<T>,
+    speed: &T,
+    opts: &DetectOptions,
+) -> Option<(Hit<T>, &'a Candidate<T>)> {
+    let ((face, fc), (seam, sc)) = match (a.0.feature, b.0.feature) {
+        (Feature::Face, Feature::Face) => return None,
+        (Feature::Face, _) => (a, b),
+        (_, Feature::Face) => (b, a),
+        _ => return None,
+    };
+    let window = seam_window(detection, seam, sc, base, speed, opts)?;
+    // The feature's vertices: an edge's two, from its index, or the one.
+    let (first, count) = match seam.feature {
+        Feature::Edge(i) => (usize::from(i), 2),
+        Feature::Vertex(i) => (usize::from(i), 1),
+        Feature::Face => return None,
+    };
+    let corners = |c: &'a Candidate<T>| [&c.triangle.a, &c.triangle.b, &c.triangle.c];
+    let (shared, around) = (corners(sc), corners(fc));
+    let shares = (first..first + count).any(|k| around.contains(&shared[k % 3]));
+    let aligned = dot(&seam.normal, &face.normal) >= T::c(INTERNAL_EDGE_DEGREES.to_radians().cos());
+    let near = face.t <= seam.t.clone() + &window && seam.t <= face.t.clone() + &window;
+    (shares && aligned && near).then(|| (Hit { t: face.t.clone().min(seam.t.clone()), ..face.clone() }, fc))
 }
 
 /// The squared distance from `p` to the box `[lo, hi]` (zero inside); each
@@ -519,7 +601,7 @@ pub fn sweep_world<T: Real>(
     let vel = body.to_espace(velocity);
     Ok(hood.earliest_hit(detection, &base, &vel, opts).map(|h| Hit {
         point: body.from_espace(&h.point) + &origin,
-        normal: normalize(&Vec3::from_fn(|i, _| h.normal[i].clone() / &body.radii()[i])).unwrap_or(h.normal),
+        normal: body.normal_from_espace(&h.normal),
         ..h
     }))
 }

@@ -200,17 +200,11 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   Only where the centre is over the face, though (the geometric
 ///   direction within 60 degrees of the face normal): beside the edge, near
 ///   the face's plane, the face normal is no contact direction (fuzz
-///   finding F20), and the geometric one is kept. A
-///   contact on an inactive feature reached during the sweep (`t > 0`)
-///   reports the face normal where its direction is the face normal's
-///   within the touching tolerance (`1 - cos` of their angle at most
-///   `opts.touch_ulps u s`, `s` the contact point's magnitude): on a flat
-///   seam hit head-on the neighbour's face and the edge tie up to rounding,
-///   and the edge's direction is tilted by the square root of the distance
-///   that rounding hides, enough to slide a long push sideways along a wall
-///   (a review, twenty-eighth session). Beyond that angle it keeps its
-///   geometric normal, the right constraint on a gently convex fold (the
-///   body rides over it).
+///   finding F20), and the geometric one is kept. A contact reached
+///   during the sweep (`t > 0`) keeps its geometric normal, the right
+///   constraint on a gently convex fold (the body rides over it); where a
+///   neighbour's face is reached at the same time up to rounding (a flat
+///   seam hit head-on), [`crate::detect::earliest_hit`] takes that face.
 ///
 /// Ties: face before edges before vertices, lower feature index first.
 ///
@@ -599,38 +593,13 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
             best = Some(Touch { t, point: (*v).clone(), centre, feature: Feature::Vertex(i as u8) });
         }
     }
-    let best = best?;
-    let scale = max_abs(&best.point, one.clone());
-    let mut hit = best.into_hit(Some(base), face_normal, index, false);
+    let mut hit = best?.into_hit(Some(base), face_normal, index, false);
     if let Feature::Edge(i) = hit.feature {
         // Across the edge, as `separation` takes it at the start (fuzz
         // finding F35): `centre - point` is off by `u` of the centre's
         // distance from the edge's nearer end, along the edge too.
         let i = usize::from(i);
         hit.normal = normalize_near_unit(&across(&hit.normal, &edges[i], &c.edge_sq[i])).unwrap_or(hit.normal);
-    }
-    // An inactive edge or vertex reached where its direction is the face
-    // normal's within the touching tolerance (`1 - cos` of the angle
-    // between them, the difference of the centre's distances to the
-    // feature and to the plane, at most `opts.touch_ulps u s`, `s` the
-    // contact point's magnitude) reports the face normal: so far as this
-    // precision tells, the face is what is touched. On a flat seam the
-    // neighbour's face is reached at the same time up to rounding, and
-    // when the edge wins the tie the centre can lie beside the seam by
-    // `sqrt(2 d)`, `d` the distance the time's rounding hides: a direction
-    // tilted by that much, not by a rounding (a review: a sphere pushed
-    // 200 radii in `f32` into the diagonal seam of a wall took a normal
-    // tilted by `1.2e-4` and slid `0.014` radii along the wall; pushed
-    // `1.8e6` radii in parts, 150 radii, over the wall's top). On a gently
-    // convex fold beyond that angle the geometric direction, between the
-    // two faces' normals, is kept: the body rides over (the face normal
-    // there made the quick report's bunny runs take up to 7 sweeps a pass
-    // instead of 4).
-    if !is_active(hit.feature, c.active)
-        && let Some(n) = &normal
-        && one.clone() - dot(&hit.normal, n) <= T::c(opts.touch_ulps * T::unit_roundoff()) * scale
-    {
-        hit.normal = n.clone();
     }
     Some(hit)
 }
@@ -1213,7 +1182,7 @@ fn nearest_vertex<T: Real>(dist_sq: &[T; 3]) -> usize {
 
 /// Whether a contact on `feature` keeps its own normal (an active edge or
 /// vertex, or the face) or takes the face normal (an internal one).
-fn is_active(feature: Feature, active: ActiveFeatures) -> bool {
+pub(crate) fn is_active(feature: Feature, active: ActiveFeatures) -> bool {
     match feature {
         Feature::Face => true,
         Feature::Edge(i) => active.edge(i),

@@ -1,6 +1,6 @@
 //! The axis-aligned ellipsoid body and its map into eSpace.
 
-use super::Vec3;
+use super::{Vec3, normalize};
 use crate::{Error, Real};
 use nalgebra::Vector3;
 
@@ -97,6 +97,19 @@ impl<T: Real> Ellipsoid<T> {
     #[must_use]
     pub fn from_espace(&self, p: &Vec3<T>) -> Vec3<T> {
         Vector3::new(p.x.clone() * &self.radii.x, p.y.clone() * &self.radii.y, p.z.clone() * &self.radii.z)
+    }
+
+    /// A unit surface normal in eSpace (a contact's, as a move's
+    /// [`crate::respond::Trace`] reports it) as the unit normal of the same
+    /// surface in world space: each coordinate divided by its radius, then
+    /// normalised (a normal maps by the inverse transpose of the point
+    /// map). For a flat ellipsoid the two differ much: on a 20-degree ramp
+    /// a `(0.4, 0.9, 0.4)` body's eSpace normal leans 9 degrees from the
+    /// vertical, its world normal 20. `n` itself where the result would not
+    /// be finite (a zero `n`).
+    #[must_use]
+    pub fn normal_from_espace(&self, n: &Vec3<T>) -> Vec3<T> {
+        normalize(&Vec3::from_fn(|i, _| n[i].clone() / &self.radii[i])).unwrap_or_else(|| n.clone())
     }
 
     /// The smallest radius.

@@ -28,7 +28,7 @@ use crate::detect::{
     espace_magnitude,
 };
 use crate::error::{count, not_negative, out_of_range, positive};
-use crate::geom::{Ellipsoid, Vec3, norm};
+use crate::geom::{Ellipsoid, Vec3, max_abs, norm};
 use crate::world::World;
 use crate::{Error, Real};
 use smallvec::SmallVec;
@@ -38,11 +38,18 @@ use smallvec::SmallVec;
 #[cfg_attr(feature = "lab", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "lab", serde(rename_all = "lowercase"))]
 pub enum Response {
-    /// Fauerby's recursive response (Table I).
+    /// Fauerby's recursive response (Table I), faithful to the original,
+    /// defects included: a baseline for study, not for a game. Its
+    /// one-sided detection lets a body into a triangle from behind or over
+    /// a culled edge, it jitters in corners and freezes in wedges
+    /// (`docs/findings.md`).
     Fauerby,
-    /// Linahan's iterative response (Table II).
+    /// Linahan's iterative response (Table II), as published: a baseline
+    /// for study. On Fauerby's detection it still enters triangles in
+    /// `f32`, and its crease of two parallel planes is NaN
+    /// (`docs/findings.md`).
     Linahan,
-    /// The robust response of this crate.
+    /// The robust response of this crate: the one to use.
     Robust,
 }
 
@@ -165,6 +172,16 @@ pub enum StopReason {
 }
 
 /// One contact met during a move.
+///
+/// In eSpace (coordinates divided by the body's radii), as the response
+/// worked: the hit's `point` relative to the move's start position for the
+/// robust response (to the world origin for the faithful ones), so that in
+/// world space it is `start + body.from_espace(&point)` (or
+/// `body.from_espace(&point)`); its `normal` in world space is
+/// [`Ellipsoid::normal_from_espace`]. For a sphere the normals agree; for a
+/// flat ellipsoid they do not (a slope test on the eSpace normal would be
+/// wrong). A world-space sweep, a ground probe for instance, is
+/// [`crate::detect::sweep_world`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Contact<T: Real> {
     /// The detection's hit, in the eSpace coordinates the response used.
@@ -342,7 +359,10 @@ fn pass<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, w: Vec3<T>, options: &Mov
 /// in `T` (its square overflows: beyond about `1.8e19` radii in `f32`,
 /// `1.3e154` in `f64`) or a coordinate of the position is not (beyond
 /// `T`'s largest value; the robust response works relative to the start,
-/// so a position that large is usable), if a triangle within reach is too
+/// so a position that large is usable), if for the robust response the
+/// velocity or the gravity is longer than [`robust::parts`] can slide
+/// (beyond about `1.8e6` radii along an axis in `f32`, `9.6e14` in `f64`,
+/// in one move), if a triangle within reach is too
 /// long for `T` ([`Neighbourhood::gather`]), or if an [`crate::MpfrDyn`]
 /// input (position, velocity, gravity, the body's radii or the world's
 /// vertices) was made at another precision than the thread's
@@ -410,7 +430,7 @@ pub fn move_body<T: Real>(
         }
         p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust)?;
     }
-    for vel in [velocity, gravity] {
+    for (what, vel) in [("velocity", velocity), ("gravity", gravity)] {
         if still(vel) {
             continue;
         }
@@ -418,7 +438,9 @@ pub fn move_body<T: Real>(
         // The robust response slides a displacement too long for its
         // padding in equal parts ([`robust::parts`]).
         let parts = match options.response {
-            Response::Robust => robust::parts(&vel_e, &options.robust),
+            Response::Robust => {
+                robust::parts(&vel_e, &options.robust).ok_or_else(|| too_long(what, &vel_e, &options.robust))?
+            }
             Response::Fauerby | Response::Linahan => 1,
         };
         let piece = if parts == 1 {
@@ -440,4 +462,21 @@ pub fn move_body<T: Real>(
         body.from_espace(&p) + &origin
     };
     Ok(Move { position, trace: frame.trace })
+}
+
+/// [`Error::InvalidArgument`] for a pass (`what`: the velocity or the
+/// gravity) whose eSpace displacement `w` even [`robust::MAX_PARTS`] parts
+/// cannot slide with the padding its rounding needs ([`robust::parts`]).
+fn too_long<T: Real>(what: &str, w: &Vec3<T>, opts: &RobustOptions) -> Error {
+    let limit = robust::MAX_PARTS as f64 * opts.max_padding / (2.0 * opts.padding_ulps * T::unit_roundoff());
+    Error::InvalidArgument {
+        what: what.into(),
+        message: format!(
+            "measured in the body's radii, its largest coordinate ({:e}) is more than the robust response can slide \
+             in one move in this precision ({limit:.2e}, in {} parts): split the motion into several moves, or use \
+             a wider precision",
+            max_abs(w, T::zero()).to_f64(),
+            robust::MAX_PARTS
+        ),
+    }
 }

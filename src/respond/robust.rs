@@ -231,11 +231,15 @@ pub const MAX_PARTS: usize = 1024;
 /// `f32`, `9.4e11` in `f64`, 6.8 at 16 bits, 1.7 at 14 bits); then the
 /// fewest parts that keep it under half the cap, if at most
 /// [`MAX_PARTS`] do (`m` up to about `1.8e6` radii in `f32`, `9.6e14` in
-/// `f64`); beyond that 1 again, the pass being out of the range that
-/// parts restore. Each part is `w / n` (rounded once per coordinate: the
-/// parts' sum is off from `w` by about `n u |w / n|`, one rounding of `w`
-/// itself). Precisions whose padding is over half the cap for a
-/// displacement of one radius (13 bits and fewer) are not split.
+/// `f64`); beyond that `None`: no number of parts the move would take
+/// keeps its guarantees, and [`crate::respond::move_body`] refuses the
+/// pass (a probe, twenty-eighth session: unsplit, a push of `2e7` radii in
+/// `f32` went through a wall and ended `2.5e6` radii away). Each part is
+/// `w / n` (rounded once per coordinate: the parts' sum is off from `w` by
+/// about `n u |w / n|`, one rounding of `w` itself). Precisions whose
+/// padding is over half the cap for a displacement of one radius (13 bits
+/// and fewer, below the robust response's range) are not split and not
+/// refused: `Some(1)`.
 ///
 /// The rounding of a sweep and the tolerances the slide scales with the
 /// displacement's length (the cone's `feasible_ulps u |w|`, the touching
@@ -256,17 +260,21 @@ pub const MAX_PARTS: usize = 1024;
 /// reach, against 15 ms for one pass).
 #[inline]
 #[must_use]
-pub fn parts<T: Real>(w: &Vec3<T>, opts: &RobustOptions) -> usize {
+pub fn parts<T: Real>(w: &Vec3<T>, opts: &RobustOptions) -> Option<usize> {
     let per_radius = 2.0 * opts.padding_ulps * T::unit_roundoff();
     let needs = max_abs(w, T::zero()).to_f64() * per_radius;
-    if needs > opts.max_padding && per_radius <= opts.max_padding { count_parts(needs / opts.max_padding) } else { 1 }
+    if needs > opts.max_padding && per_radius <= opts.max_padding {
+        count_parts(needs / opts.max_padding)
+    } else {
+        Some(1)
+    }
 }
 
-/// `ceil(ratio)` if at most [`MAX_PARTS`], else 1 ([`parts`]).
+/// `ceil(ratio)` if at most [`MAX_PARTS`], else `None` ([`parts`]).
 #[cold]
-fn count_parts(ratio: f64) -> usize {
+fn count_parts(ratio: f64) -> Option<usize> {
     let n = ratio.ceil();
-    if n <= MAX_PARTS as f64 { n as usize } else { 1 }
+    (n <= MAX_PARTS as f64).then_some(n as usize)
 }
 
 /// The least `s` of [`padding`] at `p`: `max(1, |p|)`.

@@ -7,9 +7,11 @@
 //! tie (the lower triangle index) with its geometric direction: tilted by
 //! the centre's offset from the seam, `1.2e-4` in `f32`, not by a rounding.
 //! The slide along that tilted plane carried the rest of the push sideways:
-//! a push of 200 radii ended `0.014` radii off along the wall, and one of
-//! `1.8e6` radii, slid in 1,024 parts (`robust::parts`), climbed the wall
-//! diagonally, 150 radii up and across, over its top. An inactive edge or
+//! a push of 200 radii ended `0.014` radii off along the wall, pushes of
+//! `2e5` to `1.6e6` radii, slid in parts (`robust::parts`), 0.15 radii
+//! off, and one of `1.8e6` radii, just too long for 1,024 parts and slid
+//! unsplit, climbed the wall diagonally, 150 radii up and across, over its
+//! top (such a pass is refused now). An inactive edge or
 //! vertex reached during a sweep with the centre over the face now reports
 //! the face normal, as a touch at the start always did.
 
@@ -59,11 +61,12 @@ fn stops_square_at_the_wall<T: Real>(fan: bool, push: f64) {
     assert!(depth <= 0.0, "{what}: penetration {depth:e}");
 }
 
-/// Pushes of 200 radii (one pass) and `1.8e6` radii (1,024 parts) into the
-/// diagonal seam: in `f32` they ended `0.014` radii and 150 radii off.
+/// Pushes of 200 radii (one pass) and `8e5` radii (466 parts) into the
+/// diagonal seam: in `f32` they ended `0.014` and 0.15 radii off, in `f64`
+/// `2.6e-11` and `1.3e-7`.
 #[test]
 fn a_push_into_a_walls_diagonal_seam_stops_square() {
-    for push in [100.0, 9e5] {
+    for push in [100.0, 4e5] {
         stops_square_at_the_wall::<f32>(false, push);
         stops_square_at_the_wall::<sweepslide::Mpfr<24>>(false, push);
         stops_square_at_the_wall::<f64>(false, push);
@@ -73,8 +76,48 @@ fn a_push_into_a_walls_diagonal_seam_stops_square() {
 /// The same into the inactive vertex of a fan of four wall triangles.
 #[test]
 fn a_push_into_an_inactive_vertex_of_a_wall_stops_square() {
-    for push in [100.0, 9e5] {
+    for push in [100.0, 4e5] {
         stops_square_at_the_wall::<f32>(true, push);
         stops_square_at_the_wall::<f64>(true, push);
+    }
+}
+
+/// A convex ridge of `theta` degrees (an inactive edge), its line at
+/// `x = 10` pointing at a unit sphere pushed head-on from `x = -191` by
+/// `push` along `x`, in `T`: the edge's own direction is the constraint
+/// there, and the body must stop square (`z = 0`). The first version of
+/// the seam fix took a face's normal wherever the edge's direction was
+/// within the touching tolerance of it, and in `f32` the body slid along
+/// the ridge's face, 1.7 radii at 1 degree and 3.5 at 2 (a review).
+fn stops_square_at_a_ridge<T: Real>(theta: f64, push: f64) {
+    let h = 50.0 * (theta.to_radians() / 2.0).tan();
+    let vertices = vec![
+        [10.0 + h, -50.0, -50.0],
+        [10.0, -50.0, 0.0],
+        [10.0, 50.0, 0.0],
+        [10.0 + h, 50.0, -50.0],
+        [10.0 + h, -50.0, 50.0],
+        [10.0 + h, 50.0, 50.0],
+    ];
+    let triangles = vec![[0, 1, 2], [0, 2, 3], [1, 4, 5], [1, 5, 2]];
+    let world = World::<T>::new(Arc::new(TriangleMesh::new(vertices, triangles).unwrap())).unwrap();
+    let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+    let start: Vec3<T> = vec3(-191.0, 0.0, 0.0);
+    let moved =
+        move_body(&world, &body, &start, &vec3(push, 0.0, 0.0), None, &MoveOptions::new(Response::Robust)).unwrap();
+    let [x, y, z] = [0, 1, 2].map(|i| moved.position[i].to_f64());
+    let what = format!("{} ridge {theta} degrees, push {push}: ended at ({x}, {y}, {z})", T::name());
+    assert!(z.abs() <= 16.0 * T::unit_roundoff() * push && y == 0.0, "{what}: slid along the ridge");
+    assert!((8.99..9.0).contains(&x), "{what}: not at the ridge");
+    let depth = penetration(&world, body.radii(), &moved.position).unwrap_or(f64::NEG_INFINITY);
+    assert!(depth <= 0.0, "{what}: penetration {depth:e}");
+}
+
+#[test]
+fn a_push_into_a_gently_convex_ridge_stops_square() {
+    for (theta, push) in [(1.0, 400.0), (2.0, 400.0), (2.0, 1700.0), (0.1, 400.0)] {
+        stops_square_at_a_ridge::<f32>(theta, push);
+        stops_square_at_a_ridge::<sweepslide::Mpfr<24>>(theta, push);
+        stops_square_at_a_ridge::<f64>(theta, push);
     }
 }
