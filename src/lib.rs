@@ -30,6 +30,9 @@ pub mod respond;
 pub mod world;
 
 pub use error::{Error, Result};
+/// The `nalgebra` this crate's vectors ([`geom::Vec3`]) come from, so that
+/// a caller can name its types without pinning the same version.
+pub use nalgebra;
 pub use real::Real;
 #[cfg(feature = "mpfr")]
 pub use real::{Mpfr, MpfrDyn};

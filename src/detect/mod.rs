@@ -446,8 +446,10 @@ impl<T: Real> Neighbourhood<T> {
 ///
 /// One exception, robust only: an inactive (internal) edge or vertex met at
 /// `t > 0` and the face of a triangle around it, met within the touching
-/// tolerance of the same time ([`seam_window`], [`seam_face`]), give that
-/// face's hit at the earlier of the two times. On a flat seam hit head-on the two
+/// tolerance of the same time (`touch_ulps u s` over the speed, `s` the
+/// contact point's magnitude), give that face's hit at the earlier of the
+/// two times, if the face's normal lies within the internal-edge angle of
+/// the feature's direction. On a flat seam hit head-on the two
 /// tie up to rounding, and the edge's geometric direction is tilted by the
 /// square root of the distance the rounding hides, not by a rounding: as
 /// the slide's plane it carried the rest of a push sideways (a review,
