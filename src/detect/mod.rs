@@ -449,7 +449,8 @@ impl<T: Real> Neighbourhood<T> {
 /// tolerance of the same time (`touch_ulps u s` over the speed, `s` the
 /// contact point's magnitude), give that face's hit at the earlier of the
 /// two times, if the face's normal lies within the internal-edge angle of
-/// the feature's direction. On a flat seam hit head-on the two
+/// the feature's direction and the face is local to the feature (it
+/// shares a vertex of it, or its contact point is near). On a flat seam hit head-on the two
 /// tie up to rounding, and the edge's geometric direction is tilted by the
 /// square root of the distance the rounding hides, not by a rounding: as
 /// the slide's plane it carried the rest of a push sideways (a review,
@@ -521,13 +522,17 @@ fn seam_window<T: Real>(
 /// The face hit that stands in for a seam hit ([`earliest_hit`]): of the
 /// two hits `a` and `b` (each with its candidate), one a face and the
 /// other an inactive edge or vertex met at `t > 0` within [`seam_window`]
-/// of it, the face's hit at the earlier of the two times, if the face's
-/// triangle shares a vertex of that feature (bit for bit: candidates of
-/// one neighbourhood are mapped from the same world vertices; an edge met
-/// at its end ties with the faces around that end) and its normal lies
-/// within the internal-edge angle ([`INTERNAL_EDGE_DEGREES`]) of the
-/// feature's direction (a wall met at a corner beside a seam keeps its
-/// own hit).
+/// of it, the face's hit (its point and normal) at the earlier of the two
+/// times, if the face is local to the feature and its normal lies within
+/// the default internal-edge angle ([`INTERNAL_EDGE_DEGREES`], not a
+/// mesh's own) of the feature's direction (a wall met at a corner beside a
+/// seam keeps its own hit). Local: its triangle shares a vertex of the
+/// feature (bit for bit: candidates of one neighbourhood are mapped from
+/// the same world vertices; an edge met at its end ties with the faces
+/// around that end), or its contact point lies within `2 sqrt(2 d)` of
+/// the feature's, `d` the window as a distance (a tie leaves the centre
+/// up to `sqrt(2 d)` beside the feature, and on a mesh finer than that
+/// the face under it can be a few triangles away).
 fn seam_face<'a, T: Real>(
     detection: Detection,
     a: (&Hit<T>, &'a Candidate<T>),
@@ -551,7 +556,11 @@ fn seam_face<'a, T: Real>(
     };
     let corners = |c: &'a Candidate<T>| [&c.triangle.a, &c.triangle.b, &c.triangle.c];
     let (shared, around) = (corners(sc), corners(fc));
-    let shares = (first..first + count).any(|k| around.contains(&shared[k % 3]));
+    // Or its contact point within twice the offset the tie allows: on a
+    // mesh finer than that offset the face under the centre can lie a few
+    // triangles from the feature met.
+    let shares = (first..first + count).any(|k| around.contains(&shared[k % 3]))
+        || norm_squared(&(&face.point - &seam.point)) <= T::c(8.0) * &window * speed;
     let aligned = dot(&seam.normal, &face.normal) >= T::c(INTERNAL_EDGE_DEGREES.to_radians().cos());
     let near = face.t <= seam.t.clone() + &window && seam.t <= face.t.clone() + &window;
     (shares && aligned && near).then(|| (Hit { t: face.t.clone().min(seam.t.clone()), ..face.clone() }, fc))

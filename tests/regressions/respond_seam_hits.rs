@@ -78,6 +78,7 @@ fn a_push_into_a_walls_diagonal_seam_stops_square() {
 fn a_push_into_an_inactive_vertex_of_a_wall_stops_square() {
     for push in [100.0, 4e5] {
         stops_square_at_the_wall::<f32>(true, push);
+        stops_square_at_the_wall::<sweepslide::Mpfr<24>>(true, push);
         stops_square_at_the_wall::<f64>(true, push);
     }
 }
@@ -158,4 +159,73 @@ fn a_landing_beside_a_floors_seam_does_not_slide() {
     lands_without_sliding_beside_a_seam::<f32>();
     lands_without_sliding_beside_a_seam::<sweepslide::Mpfr<24>>();
     lands_without_sliding_beside_a_seam::<f64>();
+}
+
+/// A sphere of radius 1.17 pushed 2,111 radii a frame for four frames into
+/// a wall tessellated far finer than it (a 24 x 24 patch of cells
+/// `3.5e-3` wide, each split by a diagonal, inside a frame of large
+/// quads), in `T`: it must stop square. With cells smaller than the
+/// offset a tie allows (`sqrt(2 d)`, `d` the touching tolerance), the
+/// vertex met can lie a few triangles from the face under the centre, and
+/// before the face was taken by its contact point's distance as well as by
+/// a shared vertex the body slid 1.1 radii up the wall in `f32` (the
+/// review of R28a's rework, found by its probe of fine walls).
+fn stops_square_at_a_finely_tessellated_wall<T: Real>() {
+    let (n, cell, x, y0, z0) = (24usize, 3.508315443463e-3, 38.75689488004768, 8.504965370613986, -9.724464116000762);
+    let mut vertices = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            vertices.push([x, y0 + cell * j as f64, z0 + cell * i as f64]);
+        }
+    }
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            triangles.extend([[a, d, b], [b, d, c]]);
+        }
+    }
+    // Large quads around the patch, so that a slide does not end at its
+    // border.
+    let (big, side) = (1e4, cell * n as f64);
+    let ys = [-big, y0, y0 + side, big];
+    let zs = [-big, z0, z0 + side, big];
+    for j in 0..3 {
+        for i in 0..3 {
+            if (i, j) == (1, 1) {
+                continue;
+            }
+            let b = vertices.len() as u32;
+            vertices.extend([
+                [x, ys[j], zs[i]],
+                [x, ys[j], zs[i + 1]],
+                [x, ys[j + 1], zs[i + 1]],
+                [x, ys[j + 1], zs[i]],
+            ]);
+            triangles.extend([[b, b + 1, b + 2], [b, b + 2, b + 3]]);
+        }
+    }
+    let world = World::<T>::new(Arc::new(TriangleMesh::new(vertices, triangles).unwrap())).unwrap();
+    let radius = 1.1694384811545087;
+    let body = Ellipsoid::<T>::sphere(radius).unwrap();
+    let start: Vec3<T> = vec3(14.28802847597925, 8.552699852667851, -9.677408738422587);
+    let push: Vec3<T> = vec3(2468.7263113119748, 0.0, 0.0);
+    let options = MoveOptions::new(Response::Robust);
+    let mut p = start.clone();
+    for frame in 0..4 {
+        p = move_body(&world, &body, &p, &push, None, &options).unwrap().position;
+        let [dx, dy, dz] = [0, 1, 2].map(|i| (p[i].clone() - start[i].clone()).to_f64() / radius);
+        let what = format!("{} frame {frame}: moved ({dx}, {dy}, {dz}) radii", T::name());
+        assert!(dy.abs().max(dz.abs()) <= 1e-3, "{what}: slid along the wall");
+        let gap = (x - p[0].to_f64()) / radius - 1.0;
+        assert!((0.0..0.02).contains(&gap), "{what}: gap {gap:e} radii to the wall");
+    }
+}
+
+#[test]
+fn a_push_into_a_finely_tessellated_wall_stops_square() {
+    stops_square_at_a_finely_tessellated_wall::<f32>();
+    stops_square_at_a_finely_tessellated_wall::<sweepslide::Mpfr<24>>();
+    stops_square_at_a_finely_tessellated_wall::<f64>();
 }
