@@ -449,8 +449,10 @@ impl<T: Real> Neighbourhood<T> {
 /// tolerance of the same time (`touch_ulps u s` over the speed, `s` the
 /// contact point's magnitude), give that face's hit at the earlier of the
 /// two times, if the face's normal lies within the internal-edge angle of
-/// the feature's direction and the face is local to the feature (it
-/// shares a vertex of it, or its contact point is near). On a flat seam hit head-on the two
+/// the feature's direction, the face is local to the feature (it shares a
+/// vertex of it, or its contact point is near), and the feature's
+/// direction does not lie between its own triangle's normal and the
+/// face's (the bottom of a valley, where it is the constraint). On a flat seam hit head-on the two
 /// tie up to rounding, and the edge's geometric direction is tilted by the
 /// square root of the distance the rounding hides, not by a rounding: as
 /// the slide's plane it carried the rest of a push sideways (a review,
@@ -526,7 +528,8 @@ fn seam_window<T: Real>(
 /// times, if the face is local to the feature and its normal lies within
 /// the default internal-edge angle ([`INTERNAL_EDGE_DEGREES`], not a
 /// mesh's own) of the feature's direction (a wall met at a corner beside a
-/// seam keeps its own hit). Local: its triangle shares a vertex of the
+/// seam keeps its own hit) and the feature's direction does not lie
+/// between its triangle's normal and the face's ([`between_faces`]). Local: its triangle shares a vertex of the
 /// feature (bit for bit: candidates of one neighbourhood are mapped from
 /// the same world vertices; an edge met at its end ties with the faces
 /// around that end), or its contact point lies within `2 sqrt(2 d)` of
