@@ -28,7 +28,7 @@ use crate::detect::{
     espace_magnitude,
 };
 use crate::error::{count, not_negative, out_of_range, positive};
-use crate::geom::{Ellipsoid, Vec3, max_abs, norm};
+use crate::geom::{Ellipsoid, Vec3, norm};
 use crate::world::World;
 use crate::{Error, Real};
 use smallvec::SmallVec;
@@ -421,6 +421,23 @@ pub fn move_body<T: Real>(
         seeds: SmallVec::new(),
     };
     frame.hood.gather(world, body, &reach)?;
+    // Each pass in eSpace with the number of equal parts it is slid in:
+    // the robust response slides a displacement too long for its padding
+    // in parts ([`robust::parts`]) and refuses one too long for any.
+    let mut passes: SmallVec<[(Vec3<T>, usize); 2]> = SmallVec::new();
+    for (what, vel) in [("velocity", velocity), ("gravity", gravity)] {
+        if vel.iter().all(T::is_zero) {
+            continue;
+        }
+        let vel_e = body.to_espace(vel);
+        let parts = match options.response {
+            Response::Robust => {
+                robust::parts(&vel_e, &options.robust).ok_or_else(|| robust::too_long(what, &vel_e, &options.robust))?
+            }
+            Response::Fauerby | Response::Linahan => 1,
+        };
+        passes.push((vel_e, parts));
+    }
     let start = body.to_espace(&(position - &origin));
     let mut p = start.clone();
     let still = |v: &Vec3<T>| v.iter().all(T::is_zero);
@@ -430,19 +447,7 @@ pub fn move_body<T: Real>(
         }
         p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust)?;
     }
-    for (what, vel) in [("velocity", velocity), ("gravity", gravity)] {
-        if still(vel) {
-            continue;
-        }
-        let vel_e = body.to_espace(vel);
-        // The robust response slides a displacement too long for its
-        // padding in equal parts ([`robust::parts`]).
-        let parts = match options.response {
-            Response::Robust => {
-                robust::parts(&vel_e, &options.robust).ok_or_else(|| too_long(what, &vel_e, &options.robust))?
-            }
-            Response::Fauerby | Response::Linahan => 1,
-        };
+    for (vel_e, parts) in passes {
         let piece = if parts == 1 {
             vel_e
         } else {
@@ -462,21 +467,4 @@ pub fn move_body<T: Real>(
         body.from_espace(&p) + &origin
     };
     Ok(Move { position, trace: frame.trace })
-}
-
-/// [`Error::InvalidArgument`] for a pass (`what`: the velocity or the
-/// gravity) whose eSpace displacement `w` even [`robust::MAX_PARTS`] parts
-/// cannot slide with the padding its rounding needs ([`robust::parts`]).
-fn too_long<T: Real>(what: &str, w: &Vec3<T>, opts: &RobustOptions) -> Error {
-    let limit = robust::MAX_PARTS as f64 * opts.max_padding / (2.0 * opts.padding_ulps * T::unit_roundoff());
-    Error::InvalidArgument {
-        what: what.into(),
-        message: format!(
-            "measured in the body's radii, its largest coordinate ({:e}) is more than the robust response can slide \
-             in one move in this precision ({limit:.2e}, in {} parts): split the motion into several moves, or use \
-             a wider precision",
-            max_abs(w, T::zero()).to_f64(),
-            robust::MAX_PARTS
-        ),
-    }
 }

@@ -261,12 +261,35 @@ pub const MAX_PARTS: usize = 1024;
 #[inline]
 #[must_use]
 pub fn parts<T: Real>(w: &Vec3<T>, opts: &RobustOptions) -> Option<usize> {
-    let per_radius = 2.0 * opts.padding_ulps * T::unit_roundoff();
+    let per_radius = part_padding_per_radius::<T>(opts);
     let needs = max_abs(w, T::zero()).to_f64() * per_radius;
     if needs > opts.max_padding && per_radius <= opts.max_padding {
         count_parts(needs / opts.max_padding)
     } else {
         Some(1)
+    }
+}
+
+/// Twice the padding one eSpace radius of displacement calls for,
+/// `2 padding_ulps u`: a part of length `m` (largest coordinate) needs at
+/// most half the cap, `m <= max_padding / per_radius` ([`parts`]).
+fn part_padding_per_radius<T: Real>(opts: &RobustOptions) -> f64 {
+    2.0 * opts.padding_ulps * T::unit_roundoff()
+}
+
+/// [`Error::InvalidArgument`] for a pass (`what`: the velocity or the
+/// gravity) whose eSpace displacement `w` even [`MAX_PARTS`] parts cannot
+/// slide with the padding its rounding needs ([`parts`] is `None`).
+pub(crate) fn too_long<T: Real>(what: &str, w: &Vec3<T>, opts: &RobustOptions) -> Error {
+    let limit = MAX_PARTS as f64 * opts.max_padding / part_padding_per_radius::<T>(opts);
+    Error::InvalidArgument {
+        what: what.into(),
+        message: format!(
+            "measured in the body's radii, its largest coordinate ({:e}) is more than the robust response can slide \
+             in one move in this precision ({limit:.2e}, in {MAX_PARTS} parts): split the motion into several moves, or \
+             use a wider precision",
+            max_abs(w, T::zero()).to_f64(),
+        ),
     }
 }
 
