@@ -1055,14 +1055,25 @@ enum Limits {
 /// Replaces `limits` with those of every triangle within
 /// `1 + max_padding + extra` of `p` (wider for [`Limits::Skin`]): the unit
 /// direction that separates `p` from the triangle's closest point (the
-/// face's front normal if `p` lies on the face, or when triangles are
-/// one-sided and `p` is behind the plane of one it overlaps, which pushes
-/// it through to the front; one-sided triangles it is behind and does not
-/// overlap set no limit) and the distance to gain along it: to lie
-/// `1 + pad + extra` away, or as `kind` says. Returns whether the limits
-/// can be trusted: always for [`Limits::Clear`]; for [`Limits::Skin`] not
-/// where a triangle whose padding is capped could be within reach (the
-/// limits are then left incomplete).
+/// face's normal, towards `p`, and the distance to its plane if that point
+/// lies on the face; the front normal when triangles are one-sided and `p`
+/// is behind the plane of one it overlaps, which pushes it through to the
+/// front; one-sided triangles it is behind and does not overlap set no
+/// limit) and the distance to gain along it: to lie `1 + pad + extra`
+/// away, or as `kind` says. Returns whether the limits can be trusted:
+/// always for [`Limits::Clear`]; for [`Limits::Skin`] not where a
+/// triangle whose padding is capped could be within reach (the limits are
+/// then left incomplete).
+///
+/// A triangle whose closest point is an edge or vertex sets no limit where
+/// it lies behind the plane of a triangle `p` is over, on `p`'s side
+/// (every vertex at most `feasible_ulps u m` in front of it, `m` the
+/// vertex's largest coordinate relative to `p`, the rounding of that
+/// test): clearing that plane clears it. Its own limit, half-space along
+/// the direction from its edge, would ask for a push away from the edge
+/// that the plane does not need: a review (session 29) found a body whose
+/// centre started on a flat floor, `0.18` radii beside the seam of its two
+/// triangles, pushed out `0.64` radii sideways as well as up.
 fn limits_at<T: Real>(
     frame: &Frame<'_, T>,
     p: &Vec3<T>,
@@ -1077,6 +1088,9 @@ fn limits_at<T: Real>(
     let s = least_s(p);
     let raw_padding = |c: &Candidate<T>| uncapped_padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts);
     limits.clear();
+    // Per limit: its triangle, and for one over whose face `p` lies the
+    // normal towards `p` and the distance from `p` to its plane.
+    let mut from: SmallVec<[(&Candidate<T>, Option<(Vec3<T>, T)>); 8]> = SmallVec::new();
     for c in &frame.hood.triangles {
         let tri = &c.triangle;
         // A skin limit is set wherever the distance's error could put the
@@ -1086,7 +1100,7 @@ fn limits_at<T: Real>(
         if beyond(c, p, &reach, &(reach.clone() * &reach)) {
             continue;
         }
-        let (q, _) = closest_point(c, p);
+        let (q, feature) = closest_point(c, p);
         let dist = norm(&(p - &q));
         if !(dist < reach) {
             continue;
@@ -1097,22 +1111,54 @@ fn limits_at<T: Real>(
         }
         let front = normalize(&tri.unnormalized_normal());
         let side = front.as_ref().map(|f| dot(f, &(p - &tri.a)));
-        let pad = T::c(raw_pad.min(opts.max_padding));
-        let short = dist.clone() - &one < pad.clone() * T::c(0.5);
-        let want = one.clone() + pad + extra;
-        let (need, n) = match (front, side) {
+        // `gap`: how far `p` lies along `n` from the triangle.
+        let (gap, n) = match (front, side) {
             (Some(f), Some(side)) if side < T::zero() && !frame.detect.two_sided => {
                 if !(dist < one) {
                     continue;
                 }
-                (want - &side, f)
+                (side, f)
             }
-            _ if dist > tiny => (want - &dist, (p - &q) / dist.clone()),
-            (Some(f), _) => (want, f),
+            // Over the face the plane's normal is the direction: `p - q`
+            // is off by the closest point's error in the plane too, and
+            // on or near the plane of a triangle whose vertices are far
+            // it is mostly that error and points sideways.
+            (Some(f), Some(side)) if feature == Feature::Face => {
+                if side < T::zero() {
+                    (-side, -f)
+                } else {
+                    (side, f)
+                }
+            }
+            _ if dist > tiny => (dist.clone(), (p - &q) / dist),
+            (Some(f), _) => (T::zero(), f),
             (None, _) => continue,
         };
+        let over_face = (feature == Feature::Face && !(gap < T::zero())).then(|| (n.clone(), gap.clone()));
+        let pad = T::c(raw_pad.min(opts.max_padding));
+        let short = gap.clone() - &one < pad.clone() * T::c(0.5);
+        let need = one.clone() + pad + extra - gap;
         let relaxed = kind == Limits::Skin && !short;
         limits.push((if relaxed { need.min(T::zero()) } else { need }, n));
+        from.push((c, over_face));
+    }
+    if from.iter().any(|f| f.1.is_some()) {
+        let rounding = T::c(opts.feasible_ulps * T::unit_roundoff());
+        let behind = |c: &Candidate<T>, (n, gap): &(Vec3<T>, T)| {
+            [&c.triangle.a, &c.triangle.b, &c.triangle.c].into_iter().all(|v| {
+                let rel = v - p;
+                dot(n, &rel) + gap <= rounding.clone() * max_abs(&rel, T::one())
+            })
+        };
+        let dominated: SmallVec<[bool; 8]> = from
+            .iter()
+            .map(|(c, face)| face.is_none() && from.iter().filter_map(|f| f.1.as_ref()).any(|f| behind(c, f)))
+            .collect();
+        let mut k = 0;
+        limits.retain(|_| {
+            k += 1;
+            !dominated[k - 1]
+        });
     }
     true
 }

@@ -503,3 +503,54 @@ fn robust_still_body_in_a_slot_narrower_than_its_paddings_does_not_creep_f32() {
     let pen = penetration(&world, body.radii(), &p).unwrap_or(f64::NEG_INFINITY);
     assert!(pen <= 0.0, "{pen:e} inside");
 }
+
+/// A centre on (or a hair above) the plane of a large floor, its vertices
+/// far away: the floor's closest point then carries an error of about
+/// `u` times the distance to the vertices in every direction, in the plane
+/// too, and the distance it gives is made of that error. The push-out once
+/// took its direction from it (`(p - q) / dist`) and pushed the body
+/// sideways along the floor (a review, session 29: `f32`, a floor of
+/// `+-1e3` radii, from `(0.37, 0, 0.11)` by `(0.1, 0, 0)`, to
+/// `(6.57, 0.0, 3.98)` still embedded, 24 frames to get out after
+/// wandering 30 radii; `f64`, `+-1e9` radii, embedded for 100 of 100
+/// frames). Where the closest point lies on the face, the face's normal is
+/// the direction: pushed straight up, out in the first frame.
+fn centre_on_a_large_floor<T: Real>(halves: &[f64]) {
+    use std::sync::Arc;
+    use sweepslide::world::TriangleMesh;
+    for &half in halves {
+        let corners = vec![[-half, 0.0, -half], [half, 0.0, -half], [half, 0.0, half], [-half, 0.0, half]];
+        let mesh = Arc::new(TriangleMesh::new(corners, vec![[0, 2, 1], [0, 3, 2]]).unwrap());
+        let world = World::<T>::new(mesh).unwrap();
+        let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+        for start in [[0.37, 0.0, 0.11], [0.0, 0.0, 0.0], [0.37, 1e-5, 0.11], [-3.25, 0.3, 1.5]] {
+            let name = format!("floor +-{half:e} from {start:?} {}", T::name());
+            let m = move_body(
+                &world,
+                &body,
+                &v::<T>(start),
+                &v::<T>([0.1, 0.0, 0.0]),
+                None,
+                &MoveOptions::new(Response::Robust),
+            )
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+            let p = f64s(&m.position);
+            assert!(!m.trace.embedded, "{name}: still embedded at {p:?}");
+            let pen = penetration(&world, body.radii(), &m.position).unwrap();
+            assert!(pen <= 0.0, "{name}: penetration {pen:e} at {p:?}");
+            let sideways = (p[0] - start[0] - 0.1).abs().max((p[2] - start[2]).abs());
+            assert!(sideways <= 1e-3, "{name}: pushed {sideways:e} sideways, to {p:?}");
+            assert!(p[1] <= 1.02, "{name}: pushed further up than the padding: {p:?}");
+        }
+    }
+}
+
+#[test]
+fn robust_pushes_a_centre_on_a_large_floor_straight_out_f32() {
+    centre_on_a_large_floor::<f32>(&[50.0, 1e3, 1e4, 1e5]);
+}
+
+#[test]
+fn robust_pushes_a_centre_on_a_large_floor_straight_out_f64() {
+    centre_on_a_large_floor::<f64>(&[50.0, 1e9, 1e12]);
+}
