@@ -952,3 +952,26 @@ fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
         assert!(f.command.ends_with(&format!("--response {} --precision {}", r.response, r.precision)), "{f:?}");
     }
 }
+
+/// A mesh whose triangles all collapse at one of the search's offsets
+/// (sides of `1e-17`, valid where given) stopped the search with a panic
+/// (a review, session 29); the search now names the mesh and the offset.
+#[test]
+fn a_mesh_that_collapses_at_a_search_offset_is_named() {
+    use sweepslide::Error;
+    use sweepslide::lab::search::search;
+    let dir = std::env::temp_dir().join(format!("sweepslide-collapsing-search-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("specks.obj");
+    std::fs::write(&path, "v 0 0 0\nv 1e-17 0 0\nv 0 1e-17 0\nv 1 1 1\nv 1.0000000000000002 1 1\nv 1 1.0000000000000002 1\nf 1 2 3\nf 4 5 6\n")
+        .unwrap();
+    match search(1, 200, 2, std::slice::from_ref(&path)) {
+        Err(Error::InvalidArgument { what, message }) => {
+            assert!(what.contains("specks.obj") && message.contains("1e4 radii"), "{what}: {message}");
+        }
+        other => panic!("expected the mesh to be named, got {:?}", other.map(|o| o.trials)),
+    }
+    let out = sweepslide(&["search", "--trials", "200", "--jobs", "2", "--meshes", dir.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

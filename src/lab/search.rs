@@ -184,7 +184,7 @@ struct SearchMesh {
 /// direction, as designed, but counted), so a one-sided detection's
 /// penetration on a mesh counts only in a run that never passed through a
 /// back face.
-fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
+fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Result<Trial, Error> {
     let base = &mesh.scene;
     let r = four_digits(base.radii[0] * 10f64.powf(rng.range(-0.7, 0.7)));
     let sphere = Vector3::repeat(r);
@@ -223,7 +223,13 @@ fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
     let body = drawn.map_or_else(|| format!("--radius {r:e}"), |radii| format!("--radii={}", vec3_arg(radii)));
     let radii = drawn.unwrap_or([r; 3]);
     let scene = Scene { start: start.into(), velocity, gravity, radii, frames: FRAMES, ..base.clone() };
-    let scene = scene.offset(offset, false).expect("a moved mesh keeps its triangles");
+    // A mesh valid where it was given can collapse at an offset (triangles
+    // smaller than the offset's rounding): the search names it rather than
+    // searching a mesh other than the one given.
+    let scene = scene.offset(offset, false).map_err(|e| Error::InvalidArgument {
+        what: format!("--mesh={}", mesh.path.display()),
+        message: format!("the search moves each mesh up to 1e4 radii from the origin, and at {} {e}", vec3_arg(offset)),
+    })?;
     let args = format!(
         "--mesh={} --start={} --velocity={} --gravity={} {body} --offset={} --seed {seed}",
         shell_word(&mesh.path.to_string_lossy()),
@@ -233,7 +239,7 @@ fn mesh_trial(rng: &mut Rng, mesh: &SearchMesh) -> Trial {
         vec3_arg(offset)
     );
     let family = format!("mesh:{}", base.name);
-    Trial { scene: Arc::new(scene), args, seed, family, rest: false, ellipsoid: drawn.is_some() }
+    Ok(Trial { scene: Arc::new(scene), args, seed, family, rest: false, ellipsoid: drawn.is_some() })
 }
 
 fn command(t: &Trial, response: Response, precision: Precision) -> String {
@@ -326,7 +332,7 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
             Some(family) => builtin_trial(&mut rng, family)?,
             None => {
                 let mesh = &meshes[(rng.next_u64() % meshes.len() as u64) as usize];
-                mesh_trial(&mut rng, mesh)
+                mesh_trial(&mut rng, mesh)?
             }
         };
         *tried.trials.entry(t.family.clone()).or_default() += 1;
