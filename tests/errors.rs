@@ -297,6 +297,24 @@ fn precision_out_of_range() {
     assert!(with_precision(MIN_BITS, || ()).is_ok());
 }
 
+/// `Real::with_bits`, the hand-over of a thread's precision, checks it as
+/// `with_precision` does: 0 bits panicked inside MPFR, and 1 ran below
+/// `MIN_BITS` (a review, session 29). The fixed backends ignore it.
+#[cfg(feature = "mpfr")]
+#[test]
+fn with_bits_out_of_range() {
+    use sweepslide::real::{MAX_BITS, MIN_BITS};
+    use sweepslide::{MpfrDyn, Real};
+    for bits in [0, 1, MAX_BITS + 1] {
+        let mut ran = false;
+        let result = <MpfrDyn as Real>::with_bits(bits, || ran = true);
+        assert_eq!(result.unwrap_err(), Error::PrecisionOutOfRange { bits, min: MIN_BITS, max: MAX_BITS });
+        assert!(!ran, "the closure must not run for {bits} bits");
+    }
+    assert_eq!(<MpfrDyn as Real>::with_bits(77, || MpfrDyn::from_f64(1.5).own_bits()), Ok(Some(77)));
+    assert_eq!(<f32 as Real>::with_bits(0, || 2), Ok(2));
+}
+
 // ---------------------------------------------------------------------------
 // detect::check_finite
 // ---------------------------------------------------------------------------

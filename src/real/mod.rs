@@ -157,10 +157,14 @@ pub trait Real:
     /// thread, for work handed to other threads: [`MpfrDyn`]'s
     /// precision is a per-thread setting, so a worker must take the
     /// caller's [`Real::bits`] (as [`crate::respond::move_bodies`] does).
-    /// For every other backend `f` simply runs.
-    fn with_bits<R>(bits: u32, f: impl FnOnce() -> R) -> R {
+    /// For every other backend `f` simply runs, whatever `bits` says.
+    ///
+    /// # Errors
+    /// [`Error::PrecisionOutOfRange`] for [`MpfrDyn`] unless
+    /// `MIN_BITS <= bits <= MAX_BITS` (`f` does not run).
+    fn with_bits<R>(bits: u32, f: impl FnOnce() -> R) -> Result<R, crate::Error> {
         let _ = bits;
-        f()
+        Ok(f())
     }
 }
 

@@ -219,7 +219,7 @@ impl<const BITS: u32> Real for Mpfr<BITS> {
     fn own_bits(&self) -> Option<u32> {
         (BITS == DYNAMIC).then(|| self.0.prec())
     }
-    fn with_bits<R>(bits: u32, f: impl FnOnce() -> R) -> R {
-        if BITS == DYNAMIC { at_precision(bits, f) } else { f() }
+    fn with_bits<R>(bits: u32, f: impl FnOnce() -> R) -> Result<R, Error> {
+        if BITS == DYNAMIC { with_precision(bits, f) } else { Ok(f()) }
     }
 }

@@ -37,6 +37,7 @@ pub fn move_bodies<T: Real>(
         .par_iter()
         .map(|m| {
             T::with_bits(bits, || move_body(world, &m.body, &m.position, &m.velocity, m.gravity.as_ref(), options))
+                .and_then(|moved| moved)
         })
         .collect()
 }
