@@ -975,3 +975,36 @@ fn a_mesh_that_collapses_at_a_search_offset_is_named() {
     assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Runs beyond 112 bits: the judge computed at a fixed 512 bits, whose
+/// own rounding of `1 - d` (`1e-153`) exceeds such a run's clearances, and
+/// the decisions were replayed in `Mpfr<256>`, coarser than the run. At
+/// 600 bits the robust response was judged `1e-153` inside in 16 of 30
+/// frames of `corner:45` and flipped 6 decisions on `tessellated-floor:40`
+/// (a review, session 29); its 256-bit runs did neither. The judge now
+/// computes at `4 p + 64` bits and the replay at `2 p`.
+#[test]
+fn runs_beyond_the_judges_and_replays_precision_are_judged_finer() {
+    use sweepslide::lab::metrics::judge_bits;
+    use sweepslide::lab::runner::reference_bits;
+    assert_eq!(judge_bits::<f64>(), EXACT_BITS);
+    assert_eq!(judge_bits::<sweepslide::Mpfr<600>>(), 2464);
+    assert_eq!(reference_bits(Precision::F32), 256);
+    assert_eq!(reference_bits(Precision::Mpfr(128)), 256);
+    assert_eq!(reference_bits(Precision::Mpfr(600)), 1200);
+    assert_eq!(reference_bits(Precision::Mpfr(60_000)), sweepslide::real::MAX_BITS);
+    for spec in ["corner:45", "tessellated-floor:40"] {
+        let mut scene = sweepslide::lab::scenes::build(spec, 1).unwrap();
+        scene.frames = 30;
+        let cfg = RunConfig {
+            scene: Arc::new(scene),
+            response: Response::Robust,
+            detection: None,
+            precision: Precision::Mpfr(600),
+            seed: 1,
+        };
+        let r = sweepslide::lab::run(&cfg).unwrap().result;
+        assert_eq!((r.penetrating_frames, r.max_penetration), (0, 0.0), "{spec}");
+        assert_eq!((r.decision_flips, r.plane_flips), (0, 0), "{spec}");
+    }
+}

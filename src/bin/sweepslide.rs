@@ -460,7 +460,12 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
                 r.embedded_frames
             );
         }
-        out!("  decision flips vs mpfr256: {}; frames with another sliding plane: {}", r.decision_flips, r.plane_flips);
+        out!(
+            "  decision flips vs mpfr{}: {}; frames with another sliding plane: {}",
+            sweepslide::lab::runner::reference_bits(args.precision),
+            r.decision_flips,
+            r.plane_flips
+        );
         if let Some(s) = r.snag {
             out!("  snag ratio    {s:.6} (1 = ideal slide)");
         }

@@ -1,36 +1,56 @@
 //! The lab's measurements (ALGORITHMS.md section 7), computed independently
 //! of the code under test.
 //!
-//! Distances are computed with `rug` directly at [`EXACT_BITS`] bits from
-//! the exact binary values the run stored (vertices, position, radii), with
-//! a formulation different from the detection's: the distance to the plane
+//! Distances are computed with `rug` directly at [`judge_bits`] bits
+//! (512, or `4 p + 64` for a run at `p` bits beyond 112) from the exact
+//! binary values the run stored (vertices, position, radii), with a
+//! formulation different from the detection's: the distance to the plane
 //! when the projection falls inside the triangle (three orientation signs),
 //! else the smallest distance to the three segments (clamped projection).
 //! Both branches are continuous across edges and vertices, so points near
-//! them are not misjudged. Every operation rounds at 512 bits, so each
-//! reported value (an `f64`) is the exact one up to a relative error of
-//! about `2^-500`, far below the last bit of the `f64` it is reported in.
+//! them are not misjudged. The differences of stored values and their
+//! products up to the fourth degree (the plane distance's square) are
+//! exact at that precision; the division by the radii, the segments'
+//! clamped projections and the square root round, each by a relative
+//! `2^-bits`. A reported distance `d` is then off by about `2^-(bits - 4)`
+//! relative, and a penetration `1 - d` by as much absolute: at 512 bits
+//! `1e-153`, far below the last bit of the `f64` it is reported in and
+//! below the clearance any run up to 112 bits keeps (its padding is tens
+//! of its own unit roundoffs); beyond 112 bits a run's clearances can be
+//! smaller than that, hence the wider precision (a review, session 29,
+//! found runs at 600 and 1,024 bits judged `1e-153` inside at 512 bits,
+//! and clear at 4,096).
 
 use crate::Real;
 use crate::geom::Vec3;
 use crate::world::World;
 use rug::Float;
 
-/// Precision of the exact computations.
+/// Precision of the exact computations, at least ([`judge_bits`]).
 pub const EXACT_BITS: u32 = 512;
+
+/// The precision the judge computes at for values of backend `T`:
+/// [`EXACT_BITS`], or `4 p + 64` where that is more (`p = T::bits()`, more
+/// than 112), so that the products of stored values it forms are exact and
+/// its rounding stays far below the run's own.
+#[must_use]
+pub fn judge_bits<T: Real>() -> u32 {
+    EXACT_BITS.max(T::bits().saturating_mul(4).saturating_add(64))
+}
 
 type V = [Float; 3];
 
-fn f(x: &Float) -> Float {
-    Float::with_val(EXACT_BITS, x)
+/// The precision of `v`'s values (all three share it).
+fn prec(v: &V) -> u32 {
+    v[0].prec()
 }
 
 fn sub(a: &V, b: &V) -> V {
-    [0, 1, 2].map(|i| Float::with_val(EXACT_BITS, &a[i] - &b[i]))
+    [0, 1, 2].map(|i| Float::with_val(prec(a), &a[i] - &b[i]))
 }
 
 fn dot(a: &V, b: &V) -> Float {
-    let mut s = Float::with_val(EXACT_BITS, &a[0] * &b[0]);
+    let mut s = Float::with_val(prec(a), &a[0] * &b[0]);
     s += &a[1] * &b[1];
     s += &a[2] * &b[2];
     s
@@ -38,9 +58,9 @@ fn dot(a: &V, b: &V) -> Float {
 
 fn cross(a: &V, b: &V) -> V {
     [
-        Float::with_val(EXACT_BITS, &a[1] * &b[2] - &a[2] * &b[1]),
-        Float::with_val(EXACT_BITS, &a[2] * &b[0] - &a[0] * &b[2]),
-        Float::with_val(EXACT_BITS, &a[0] * &b[1] - &a[1] * &b[0]),
+        Float::with_val(prec(a), &a[1] * &b[2] - &a[2] * &b[1]),
+        Float::with_val(prec(a), &a[2] * &b[0] - &a[0] * &b[2]),
+        Float::with_val(prec(a), &a[0] * &b[1] - &a[1] * &b[0]),
     ]
 }
 
@@ -51,19 +71,19 @@ fn segment_distance_sq(p: &V, a: &V, b: &V) -> Float {
     let len2 = dot(&ab, &ab);
     let mut t = dot(&ap, &ab);
     if len2.is_zero() || t.is_sign_negative() {
-        t = Float::new(EXACT_BITS);
+        t = Float::new(prec(p));
     } else {
         t /= &len2;
         if t > 1 {
-            t = Float::with_val(EXACT_BITS, 1);
+            t = Float::with_val(prec(p), 1);
         }
     }
-    let d = [0, 1, 2].map(|i| Float::with_val(EXACT_BITS, &ap[i] - &t * &ab[i]));
+    let d = [0, 1, 2].map(|i| Float::with_val(prec(p), &ap[i] - &t * &ab[i]));
     dot(&d, &d)
 }
 
-/// Squared distance from `p` to the triangle `a b c` (all exact at
-/// [`EXACT_BITS`]).
+/// Squared distance from `p` to the triangle `a b c`, computed at the
+/// precision of `p`'s values (all four exact at it: [`judge_bits`]).
 #[must_use]
 pub fn triangle_distance_sq(p: &V, a: &V, b: &V, c: &V) -> Float {
     let n = cross(&sub(b, a), &sub(c, a));
@@ -72,14 +92,14 @@ pub fn triangle_distance_sq(p: &V, a: &V, b: &V, c: &V) -> Float {
         && [(a, b), (b, c), (c, a)].iter().all(|(u, v)| !dot(&n, &cross(&sub(v, u), &sub(p, u))).is_sign_negative());
     if inside {
         let h = dot(&n, &sub(p, a));
-        return Float::with_val(EXACT_BITS, &h * &h) / n2;
+        return Float::with_val(prec(p), &h * &h) / n2;
     }
     let d = segment_distance_sq(p, a, b).min(&segment_distance_sq(p, b, c));
     d.min(&segment_distance_sq(p, c, a))
 }
 
 fn exact<T: Real>(v: &Vec3<T>) -> V {
-    [0, 1, 2].map(|i| f(&v[i].to_rug()))
+    [0, 1, 2].map(|i| Float::with_val(judge_bits::<T>(), v[i].to_rug()))
 }
 
 /// How far beyond the radius [`penetration`] looks, in eSpace units: it
@@ -89,7 +109,8 @@ pub const PENETRATION_REACH: f64 = 0.05;
 
 /// The exact penetration of a body with `radii` centred at `position` into
 /// the triangles of `world`: `1 - d` with `d` the exact eSpace distance from
-/// the centre to the mesh (coordinates divided by the radii at 512 bits),
+/// the centre to the mesh (coordinates divided by the radii at
+/// [`judge_bits`] bits),
 /// multiplied by the radius for a sphere (so it is in world units) and left
 /// in eSpace units for an ellipsoid. Positive means inside the geometry,
 /// negative is minus the clearance; `None` when no triangle comes within
@@ -117,7 +138,7 @@ pub struct Penetrated {
     pub depth: f64,
     /// Whether the frame's start centre lay strictly behind the
     /// triangle's plane: on the side opposite to `(b - a) x (c - a)` (in
-    /// eSpace, the sign computed at [`EXACT_BITS`] bits; `false` for a
+    /// eSpace, the sign computed at [`judge_bits`] bits; `false` for a
     /// zero-area triangle, which has no back). Fauerby's one-sided
     /// detection culls a triangle by the direction of motion instead (a
     /// motion along its front normal); a body behind a plane that comes
@@ -157,7 +178,7 @@ pub fn penetrated<T: Real>(world: &World<T>, radii: &Vec3<T>, start: &Vec3<T>, e
 }
 
 /// The triangles within reach of a body's centre, in eSpace at
-/// [`EXACT_BITS`] bits, with their squared distances to it.
+/// [`judge_bits`] bits, with their squared distances to it.
 struct Near {
     radii: V,
     triangles: Vec<(u32, [V; 3], Float)>,
@@ -208,7 +229,7 @@ impl Near {
         if d > 1.0 + PENETRATION_REACH {
             return None;
         }
-        let pen = Float::with_val(EXACT_BITS, 1 - d);
+        let pen = Float::with_val(d.prec(), 1 - &d);
         let r = &self.radii;
         let sphere = r[0] == r[1] && r[1] == r[2];
         Some(if sphere { (pen * &r[0]).to_f64() } else { pen.to_f64() })
@@ -216,17 +237,17 @@ impl Near {
 
     fn to_espace<T: Real>(&self, v: &Vec3<T>) -> V {
         let v = exact(v);
-        [0, 1, 2].map(|i| Float::with_val(EXACT_BITS, &v[i] / &self.radii[i]))
+        [0, 1, 2].map(|i| Float::with_val(prec(&v), &v[i] / &self.radii[i]))
     }
 }
 
 /// Jitter over the last `K = max(1, n / 4)` displacements `d_k` of the
 /// trajectory `positions` (frame 0 first): `(sum |d_k| - |sum d_k|) / (K
 /// speed)`. Zero for straight motion or rest, positive when the body
-/// wiggles. Displacements are taken exactly (512 bits) so that rounding of
+/// wiggles. Displacements are taken exactly ([`judge_bits`]) so that rounding of
 /// far-from-origin coordinates does not show up as jitter. The exact value
-/// is never negative (the triangle inequality); the 512-bit difference of
-/// path and net can round a few units of `2^-512` of the path below zero
+/// is never negative (the triangle inequality); the rounded difference of
+/// path and net can round a few units of `2^-bits` of the path below zero
 /// for straight motion, and is clamped at zero. Zero without a displacement
 /// or a speed; NaN (not computable, and so not zero) when a position is
 /// NaN or infinite.
@@ -243,12 +264,12 @@ pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
     let tail = &positions[positions.len() - 1 - k..];
     let exact_tail: Vec<V> = tail.iter().map(exact).collect();
     let norm = |d: &V| dot(d, d).sqrt();
-    let mut path = Float::new(EXACT_BITS);
+    let mut path = Float::new(judge_bits::<T>());
     for w in exact_tail.windows(2) {
         path += norm(&sub(&w[1], &w[0]));
     }
     let net = norm(&sub(&exact_tail[k], &exact_tail[0]));
-    let j = Float::with_val(EXACT_BITS, path - net) / (k as f64 * speed);
+    let j = Float::with_val(judge_bits::<T>(), path - net) / (k as f64 * speed);
     j.to_f64().max(0.0)
 }
 
@@ -256,11 +277,7 @@ pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
 /// divided by the ideal displacement (`frames * |ideal|`); 1 means no snag.
 #[must_use]
 pub fn snag_ratio<T: Real>(start: &Vec3<T>, end: &Vec3<T>, ideal_per_frame: [f64; 3], frames: usize) -> Option<f64> {
-    let ideal = exact(&crate::geom::vec3::<crate::Mpfr<EXACT_BITS>>(
-        ideal_per_frame[0],
-        ideal_per_frame[1],
-        ideal_per_frame[2],
-    ));
+    let ideal = ideal_per_frame.map(|x| Float::with_val(judge_bits::<T>(), x));
     let len = dot(&ideal, &ideal).sqrt();
     if len.is_zero() || frames == 0 || !end.iter().all(Real::is_finite) {
         return None;

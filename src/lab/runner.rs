@@ -14,8 +14,23 @@ use std::fmt;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// Precision of the reference run that decision flips are counted against.
+/// Precision of the reference run that decision flips are counted against,
+/// for runs at up to half of it ([`reference_bits`]).
 pub const REFERENCE_BITS: u32 = 256;
+
+/// The precision of the replay a run at `precision` is compared with:
+/// [`REFERENCE_BITS`], or twice the run's bits beyond 128, at most
+/// [`MAX_BITS`](crate::real::MAX_BITS) (so a run beyond half of that is
+/// replayed less than twice as finely, and one at `MAX_BITS` at its own
+/// precision: its flips are then zero by construction). The replay's
+/// tolerances are the run's in absolute terms ([`same_tolerances`]), so
+/// its own rounding must lie far below them: a review (session 29) found
+/// runs at 600 bits, compared with `Mpfr<256>`, flipping 4 to 6
+/// decisions where their 256-bit runs flipped none.
+#[must_use]
+pub fn reference_bits(precision: Precision) -> u32 {
+    REFERENCE_BITS.max(precision.bits().saturating_mul(2)).min(crate::real::MAX_BITS)
+}
 
 /// A floating-point backend chosen at run time.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -152,8 +167,8 @@ pub struct RunResult {
     #[serde(default)]
     pub embedded_frames: usize,
     /// Frames whose contact decisions (hit or not, triangle, feature)
-    /// differ from the same frame replayed in `Mpfr<256>` from the same
-    /// start.
+    /// differ from the same frame replayed from the same start at
+    /// [`reference_bits`] (`Mpfr<256>` for runs up to 128 bits).
     pub decision_flips: usize,
     /// Frames whose sliding constraints differ from that replay: another
     /// number of contacts, or a contact normal more than 1e-3 rad away.
@@ -218,7 +233,7 @@ pub struct FrameRecord {
     pub iterations: u32,
     /// Why the frame's last pass stopped.
     pub stop: StopReason,
-    /// Whether the decisions differed from the `Mpfr<256>` replay.
+    /// Whether the decisions differed from the replay ([`reference_bits`]).
     pub flip: bool,
     /// Whether the robust response could not push the body out of the
     /// geometry it began the frame in ([`RunResult::embedded_frames`]).
@@ -250,15 +265,17 @@ fn planes_differ<T: Real, U: Real>(a: &Move<T>, b: &Move<U>) -> bool {
         })
 }
 
-fn to_reference<T: Real>(v: &Vec3<T>) -> Vec3<Mpfr<REFERENCE_BITS>> {
-    v.map(|x| Mpfr::from_rug(&x.to_rug()))
+/// `v` in the replay's backend `R`, at its precision (call within
+/// `R::with_bits` for [`MpfrDyn`]).
+fn to_reference<T: Real, R: Real>(v: &Vec3<T>) -> Vec3<R> {
+    v.map(|x| R::from_rug(&x.to_rug()))
 }
 
 fn is_capped(stop: StopReason) -> bool {
     matches!(stop, StopReason::DepthCap | StopReason::ThirdPlane | StopReason::IterationCap)
 }
 
-/// `opts` for the `Mpfr<256>` replay: every tolerance counted in units of
+/// `opts` for the replay in `R` at `bits`: every tolerance counted in units of
 /// the unit roundoff (the robust detection's touching tolerance, the robust
 /// response's padding, admissibility and parallel-plane tolerances, and the
 /// final rounding's bound, which widens the resting band far from the
@@ -268,8 +285,8 @@ fn is_capped(stop: StopReason) -> bool {
 /// its own, far smaller tolerances, a body the run holds in the resting
 /// band would be, for the replay, a body a hair away that must sweep to
 /// the contact first: a flip that no rounding caused.)
-fn same_tolerances<T: Real>(opts: &MoveOptions) -> MoveOptions {
-    let k = T::unit_roundoff() / Mpfr::<REFERENCE_BITS>::unit_roundoff();
+fn same_tolerances<T: Real, R: Real>(opts: &MoveOptions, bits: u32) -> Result<MoveOptions, Error> {
+    let k = T::unit_roundoff() / R::with_bits(bits, R::unit_roundoff)?;
     let mut o = opts.clone();
     o.detect.touch_ulps *= k;
     let r = &mut o.robust;
@@ -278,11 +295,11 @@ fn same_tolerances<T: Real>(opts: &MoveOptions) -> MoveOptions {
     {
         *x *= k;
     }
-    o
+    Ok(o)
 }
 
-/// Runs `cfg` in backend `T`.
-fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
+/// Runs `cfg` in backend `T`, replayed in `R` at `ref_bits` bits.
+fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput, Error> {
     let scene = &*cfg.scene;
     let frames = scene.frames;
     if !(1..=MAX_FRAMES).contains(&frames) {
@@ -292,12 +309,13 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         });
     }
     let world = World::<T>::new(scene.mesh.clone())?;
-    let reference = world.converted::<Mpfr<REFERENCE_BITS>>()?;
     let body = Ellipsoid::<T>::new(scene.radii)?;
-    let ref_body = Ellipsoid::from_radii(to_reference(body.radii()))?;
+    let (reference, ref_body) = R::with_bits(ref_bits, || -> Result<_, Error> {
+        Ok((world.converted::<R>()?, Ellipsoid::from_radii(to_reference::<T, R>(body.radii()))?))
+    })??;
     let mut opts = MoveOptions::new(cfg.response);
     opts.detection = cfg.detection;
-    let ref_opts = same_tolerances::<T>(&opts);
+    let ref_opts = same_tolerances::<T, R>(&opts, ref_bits)?;
     let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let has_gravity = scene.gravity != [0.0; 3];
     // The first push (a scripted case may start at rest and move later).
@@ -342,14 +360,16 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
         let m = move_body(&world, &body, &p, &vel, grav, &opts)?;
         moves += 1;
         let finite = m.position.iter().all(Real::is_finite);
-        let replay = move_body(
-            &reference,
-            &ref_body,
-            &to_reference(&p),
-            &to_reference(&vel),
-            has_gravity.then(|| to_reference(&gravity)).as_ref(),
-            &ref_opts,
-        )?;
+        let replay = R::with_bits(ref_bits, || {
+            move_body(
+                &reference,
+                &ref_body,
+                &to_reference(&p),
+                &to_reference(&vel),
+                has_gravity.then(|| to_reference(&gravity)).as_ref(),
+                &ref_opts,
+            )
+        })??;
         let flip = decisions(&m) != decisions(&replay);
         flips += usize::from(flip);
         plane_flips += usize::from(planes_differ(&m, &replay));
@@ -458,7 +478,7 @@ fn run_in<T: Real>(cfg: &RunConfig) -> Result<RunOutput, Error> {
 }
 
 /// The most frames one run plays (every frame's position and record is
-/// kept, and replayed in `Mpfr<256>`: a million frames take minutes and
+/// kept, and replayed in `Mpfr<256>` or finer: a million frames take minutes and
 /// about 100 MB).
 pub const MAX_FRAMES: usize = 1_000_000;
 
@@ -470,10 +490,14 @@ pub const MAX_FRAMES: usize = 1_000_000;
 /// [`Error::InvalidArgument`] for a number of frames outside
 /// `1..=`[`MAX_FRAMES`]) or an unusable precision.
 pub fn run(cfg: &RunConfig) -> Result<RunOutput, Error> {
+    let reference = reference_bits(cfg.precision);
     match cfg.precision {
-        Precision::F32 => run_in::<f32>(cfg),
-        Precision::F64 => run_in::<f64>(cfg),
-        Precision::Mpfr(bits) => with_precision(bits, || run_in::<MpfrDyn>(cfg))?,
+        Precision::F32 => run_in::<f32, Mpfr<REFERENCE_BITS>>(cfg, reference),
+        Precision::F64 => run_in::<f64, Mpfr<REFERENCE_BITS>>(cfg, reference),
+        Precision::Mpfr(bits) if reference == REFERENCE_BITS => {
+            with_precision(bits, || run_in::<MpfrDyn, Mpfr<REFERENCE_BITS>>(cfg, reference))?
+        }
+        Precision::Mpfr(bits) => with_precision(bits, || run_in::<MpfrDyn, MpfrDyn>(cfg, reference))?,
     }
 }
 

@@ -315,7 +315,7 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
         reproduced: rpen.is_empty() && !rclean.is_empty() && rnan_runs == 0,
         evidence: if rpen.is_empty() {
             format!(
-                "no penetrating frame in {} robust runs (checked exactly, 512 bits){}",
+                "no frame of {} robust runs ended inside the geometry (judged exactly after every frame, at 512 bits or more; within a frame a body is not judged){}",
                 rclean.len(),
                 left_out(rnan_runs)
             )

@@ -1090,7 +1090,8 @@ fn limits_at<T: Real>(
     limits.clear();
     // Per limit: its triangle, and for one over whose face `p` lies the
     // normal towards `p` and the distance from `p` to its plane.
-    let mut from: SmallVec<[(&Candidate<T>, Option<(Vec3<T>, T)>); 8]> = SmallVec::new();
+    type Under<'a, T> = (&'a Candidate<T>, Option<(Vec3<T>, T)>);
+    let mut from: SmallVec<[Under<'_, T>; 8]> = SmallVec::new();
     for c in &frame.hood.triangles {
         let tri = &c.triangle;
         // A skin limit is set wherever the distance's error could put the
