@@ -931,6 +931,47 @@ fn move_options_out_of_range_name_the_field() {
     }
 }
 
+/// `robust.rounding_ulps` beyond `1 / (2u)` of the backend is refused
+/// (`1e7` in `f32` carried a body through a slot's wall, `1e300` gave an
+/// infinite position, both `Ok`: a review, session 29); up to it, and in
+/// `f64` where `1e7` is a small share, the move runs.
+#[test]
+fn a_final_rounding_bound_beyond_any_rounding_is_refused() {
+    use sweepslide::respond::{MoveOptions, Response, move_body};
+    let mut o = MoveOptions::new(Response::Robust);
+    let (p, v) = ([0.0, 1.0, 0.0], [0.1, -0.2, 0.0]);
+    let f32_move = |o: &MoveOptions| {
+        move_body(
+            &floor_world::<f32>(),
+            &Ellipsoid::sphere(0.5).unwrap(),
+            &vec3(p[0], p[1], p[2]),
+            &vec3(v[0], v[1], v[2]),
+            None,
+            o,
+        )
+    };
+    for ulps in [1e7, 1e300] {
+        o.robust.rounding_ulps = ulps;
+        assert_eq!(o.validate(), Ok(()), "the range depends on the backend");
+        match f32_move(&o) {
+            Err(Error::InvalidArgument { what, .. }) => assert_eq!(what, "robust.rounding_ulps"),
+            other => panic!("{ulps:e}: {other:?}"),
+        }
+    }
+    o.robust.rounding_ulps = 0.5 / f64::from(f32::EPSILON / 2.0);
+    assert!(f32_move(&o).is_ok());
+    o.robust.rounding_ulps = 1e7;
+    let f64_move = move_body(
+        &floor_world::<f64>(),
+        &Ellipsoid::sphere(0.5).unwrap(),
+        &vec3(p[0], p[1], p[2]),
+        &vec3(v[0], v[1], v[2]),
+        None,
+        &o,
+    );
+    assert!(f64_move.is_ok(), "{f64_move:?}");
+}
+
 /// A displacement whose length in radii squared overflows `T` is an error,
 /// not a body that silently stays put (the robust response used to stop
 /// with `Blocked`) or a NaN (the faithful ones).

@@ -192,6 +192,13 @@ pub fn fauerby_point_in_triangle<T: Real>(point: &Vec3<T>, tri: &Triangle<T>) ->
 ///   `s = max(1, |q|_inf)` the magnitude of the point `q` the distance is
 ///   measured from (the vertex nearest the centre for the face, the nearer
 ///   endpoint for an edge, the vertex itself), all relative to `base`.
+/// * The quick rejections come first, with a fixed margin of `1e-3` radii
+///   beyond 1 plus their own rounding: a candidate whose box lies beyond
+///   that is no hit even where `tol` is wider (`s` above about `1e3` in
+///   `f32`, `6e11` in `f64`) and [`proximity`] calls it touching. The box's
+///   coordinates are differences of stored values, far more accurate
+///   there than a distance taken from a vertex `s` away; the touching rule
+///   above holds for the candidates they pass.
 ///
 /// * A sphere *touching* an inactive (internal) edge or vertex at `t = 0`,
 ///   as `active` says, is judged and reported with the face normal: on a

@@ -352,7 +352,8 @@ fn pass<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, w: Vec3<T>, options: &Mov
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] for options out of range
-/// ([`MoveOptions::validate`]); [`Error::NonFinite`] if the position,
+/// ([`MoveOptions::validate`], and `robust.rounding_ulps` beyond `1 / (2u)`
+/// in `T`); [`Error::NonFinite`] if the position,
 /// velocity or gravity has a NaN or
 /// infinite coordinate; [`Error::InvalidArgument`] if, measured in the
 /// body's radii (eSpace), the displacements' length is not representable
@@ -377,6 +378,7 @@ pub fn move_body<T: Real>(
     options: &MoveOptions,
 ) -> Result<Move<T>, Error> {
     options.validate()?;
+    robust::check_rounding::<T>(&options.robust)?;
     check_finite("position", position)?;
     check_finite("velocity", velocity)?;
     let zero = Vec3::zeros();

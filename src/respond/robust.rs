@@ -138,8 +138,36 @@ pub struct RobustOptions {
     /// band in which a body counts as resting is twice the bound wider.
     /// Lowering it below `sqrt(3)` voids that check; the lab's `Mpfr<256>`
     /// replay scales it with the other `*_ulps` fields, so that it rests
-    /// in the run's band.
+    /// in the run's band. [`super::move_body`] refuses
+    /// `rounding_ulps * u > 1/2` ([`check_rounding`]).
     pub rounding_ulps: f64,
+}
+
+/// `Ok` unless `opts.rounding_ulps * u` exceeds `1/2` in `T`: no precision
+/// of 2 bits or more (`u <= 1/4`) rounds a vector by more than `sqrt(3) /
+/// 4` of its magnitude, so a larger bound means no rounding and only
+/// lengthens the landing's unswept pushes, to `pad + 2 R` (a review,
+/// session 29: `1e7` in `f32`, `0.6` per unit, carried a body through a
+/// slot's wall; `1e300` gave an infinite position). The product is the
+/// same in the lab's replay, which scales `rounding_ulps` by the ratio of
+/// the unit roundoffs.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming `robust.rounding_ulps`.
+pub(crate) fn check_rounding<T: Real>(opts: &RobustOptions) -> Result<(), Error> {
+    let share = opts.rounding_ulps * T::unit_roundoff();
+    if share <= 0.5 {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument {
+            what: "robust.rounding_ulps".into(),
+            message: format!(
+                "times the unit roundoff of {} it must be at most 1/2 (no rounding is larger), got {} ({share:e})",
+                T::name(),
+                opts.rounding_ulps
+            ),
+        })
+    }
 }
 
 impl Default for RobustOptions {
