@@ -386,6 +386,16 @@ fn candidate_normal_and_tilt<T: Real>() {
     // Degenerate in this precision: no normal, no finite tilt.
     let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
     assert!(!tilt(flat).is_finite());
+    assert_eq!(tilt([[1.0; 3]; 3]), f64::INFINITY, "coincident vertices");
+    // The cap at scales whose squared sides' product leaves f64's range
+    // (it overflowed to an infinite tilt, read as degenerate, at 1e60 in
+    // f64: a review, session 29); in f32 the cap's own coordinates limit
+    // the scale.
+    let big: &[f64] = if T::bits() > 24 { &[1e60, 1e-60, 1e100] } else { &[1e15] };
+    for &scale in big {
+        let cap = cap.map(|p| p.map(|x| x * scale));
+        assert!((tilt(cap) - 65.0 / 16.0).abs() < 16.0 * u * 4.0, "scale {scale:e}: {}", tilt(cap));
+    }
 }
 
 /// One module per backend, each with the whole suite.

@@ -244,13 +244,29 @@ impl<T: Real> Candidate<T> {
     /// right triangle, `2 / sqrt(3)` for an equilateral one, large only
     /// for a flat cap; infinite when degenerate), in `f64`: the unit
     /// normal's direction is off by a few `u` times this, and so is a
-    /// distance to the plane per unit of lever arm.
+    /// distance to the plane per unit of lever arm. Where the product of
+    /// the squared sides leaves `f64`'s range (sides beyond about `1e51`
+    /// or below `1e-51` radii) the two shorter sides' lengths are
+    /// multiplied instead (a review, session 29: the product overflowed,
+    /// and a flat cap `1e60` radii wide lost its tilt's padding).
     #[must_use]
     pub fn tilt(&self) -> f64 {
         let [l0, l1, l2] = [0, 1, 2].map(|i| self.edge_sq[i].to_f64());
         let longest = l0.max(l1).max(l2);
+        let shape = self.shape.to_f64();
+        if !(longest > 0.0 && shape < f64::INFINITY) {
+            return f64::INFINITY;
+        }
         // `|e_i|^2 |e_j|^2 = l0 l1 l2 / longest` and `shape = longest / |e_i x e_j|`.
-        (l0 * l1 * l2 / longest).sqrt() * self.shape.to_f64() / longest
+        let product = l0 * l1 * l2 / longest;
+        let sides = if product.is_normal() {
+            product.sqrt()
+        } else {
+            let mut l = [l0, l1, l2];
+            l.sort_by(f64::total_cmp);
+            l[0].sqrt() * l[1].sqrt()
+        };
+        sides * shape / longest
     }
 
     /// The squared distance from `p` to this candidate's box (zero inside):
