@@ -92,6 +92,7 @@
 use super::{Frame, StopReason};
 use crate::detect::{Candidate, DetectOptions, Detection, Hit, closest_point, proximity};
 use crate::geom::{Feature, Triangle, Vec3, cross, dot, max_abs, norm, norm_squared, normalize};
+use crate::world::INTERNAL_EDGE_DEGREES;
 use crate::{Error, Real};
 use smallvec::SmallVec;
 use std::borrow::Cow;
@@ -1080,11 +1081,26 @@ enum Limits {
     Skin,
 }
 
+/// Where a limit of [`limits_at`] came from.
+enum Source<T: Real> {
+    /// The closest point lies on the face: the limit is along the face's
+    /// normal, and `p` lies this far from the plane along it.
+    Face(T),
+    /// The closest point lies on an edge or a vertex: the limit is along
+    /// `p` minus that point. With the triangle's unit front normal and
+    /// `p`'s distance from its plane along it, where it has a normal.
+    Point(Option<(Vec3<T>, T)>),
+    /// Anything else (`p` on the triangle's boundary, or behind a
+    /// one-sided triangle's edge).
+    Other,
+}
+
 /// Replaces `limits` with those of every triangle within
 /// `1 + max_padding + extra` of `p` (wider for [`Limits::Skin`]): the unit
 /// direction that separates `p` from the triangle's closest point (the
 /// face's normal, towards `p`, and the distance to its plane if that point
-/// lies on the face; the front normal when triangles are one-sided and `p`
+/// lies on the face, the front normal where `p` lies within half the
+/// triangle's padding behind it; the front normal when triangles are one-sided and `p`
 /// is behind the plane of one it overlaps, which pushes it through to the
 /// front; one-sided triangles it is behind and does not overlap set no
 /// limit) and the distance to gain along it: to lie `1 + pad + extra`
@@ -1094,14 +1110,27 @@ enum Limits {
 /// then left incomplete).
 ///
 /// A triangle whose closest point is an edge or vertex sets no limit where
-/// it lies behind the plane of a triangle `p` is over, on `p`'s side
-/// (every vertex at most `feasible_ulps u m` in front of it, `m` the
-/// vertex's largest coordinate relative to `p`, the rounding of that
-/// test): clearing that plane clears it. Its own limit, half-space along
+/// it lies behind the plane of a triangle `p` is over, as that one's limit
+/// faces (every vertex at most half its own uncapped padding plus
+/// `feasible_ulps u m` in front of it, `m` the vertex's largest coordinate
+/// relative to `p`: the padding covers the rounding of its vertices'
+/// positions, which far from the origin lifts the vertices of a flat but
+/// tilted floor off each other's planes, and the second term that of
+/// the test): clearing that plane clears it. Its own limit, half-space along
 /// the direction from its edge, would ask for a push away from the edge
 /// that the plane does not need: a review (session 29) found a body whose
 /// centre started on a flat floor, `0.18` radii beside the seam of its two
-/// triangles, pushed out `0.64` radii sideways as well as up.
+/// triangles, pushed out `0.64` radii sideways as well as up. One that
+/// does not lie behind it but whose own plane is within
+/// [`INTERNAL_EDGE_DEGREES`] of parallel to it (a neighbour on a floor
+/// whose vertices, rounded far from the origin, left it a little in front,
+/// or a shallow valley's other face) asks instead that `p` clear its own
+/// plane, on `p`'s side (on the face's where `p` lies within half the
+/// triangle's padding of it): it lies in that plane, so clearing it clears
+/// the triangle, and the limit nearly agrees with the face's. Its review
+/// found in-plane limits of such neighbours, kept and no longer
+/// contradictory, solved into pushes up to 1.4 radii sideways (`f64` at
+/// `1e9` from the origin).
 fn limits_at<T: Real>(
     frame: &Frame<'_, T>,
     p: &Vec3<T>,
@@ -1116,10 +1145,18 @@ fn limits_at<T: Real>(
     let s = least_s(p);
     let raw_padding = |c: &Candidate<T>| uncapped_padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts);
     limits.clear();
-    // Per limit: its triangle, and for one over whose face `p` lies the
-    // normal towards `p` and the distance from `p` to its plane.
-    type Under<'a, T> = (&'a Candidate<T>, Option<(Vec3<T>, T)>);
-    let mut from: SmallVec<[Under<'_, T>; 8]> = SmallVec::new();
+    // Per limit: its triangle, its uncapped padding and where it came from.
+    type From<'a, T> = (&'a Candidate<T>, f64, Source<T>);
+    let mut from: SmallVec<[From<'_, T>; 8]> = SmallVec::new();
+    // The limit that asks for `gap` along `n` to become `1 + pad + extra`
+    // (relaxed as [`Limits::Skin`] says).
+    let limit = |gap: T, n: Vec3<T>, raw_pad: f64| -> Limit<T> {
+        let pad = T::c(raw_pad.min(opts.max_padding));
+        let short = gap.clone() - &one < pad.clone() * T::c(0.5);
+        let need = one.clone() + pad + extra - gap;
+        let relaxed = kind == Limits::Skin && !short;
+        (if relaxed { need.min(T::zero()) } else { need }, n)
+    };
     for c in &frame.hood.triangles {
         let tri = &c.triangle;
         // A skin limit is set wherever the distance's error could put the
@@ -1141,53 +1178,86 @@ fn limits_at<T: Real>(
         let front = normalize(&tri.unnormalized_normal());
         let side = front.as_ref().map(|f| dot(f, &(p - &tri.a)));
         // `gap`: how far `p` lies along `n` from the triangle.
-        let (gap, n) = match (front, side) {
+        let (gap, n, source) = match (front, side) {
             (Some(f), Some(side)) if side < T::zero() && !frame.detect.two_sided => {
                 if !(dist < one) {
                     continue;
                 }
-                (side, f)
+                let source = if feature == Feature::Face { Source::Face(side.clone()) } else { Source::Other };
+                (side, f, source)
             }
             // Over the face the plane's normal is the direction: `p - q`
             // is off by the closest point's error in the plane too, and
             // on or near the plane of a triangle whose vertices are far
-            // it is mostly that error and points sideways.
+            // it is mostly that error and points sideways. Within half
+            // the padding of the plane, where the side is not to be
+            // trusted, the front normal decides (as for a point on the
+            // face), so that a body barely behind a wall of a slot too
+            // narrow for it leaves the way the front says, not into the
+            // slot.
             (Some(f), Some(side)) if feature == Feature::Face => {
-                if side < T::zero() {
-                    (-side, -f)
+                if side < -T::c(raw_pad / 2.0) {
+                    (-side.clone(), -f, Source::Face(-side))
                 } else {
-                    (side, f)
+                    (side.clone(), f, Source::Face(side))
                 }
             }
-            _ if dist > tiny => (dist.clone(), (p - &q) / dist),
-            (Some(f), _) => (T::zero(), f),
+            (front, side) if dist > tiny => (dist.clone(), (p - &q) / dist, Source::Point(front.zip(side))),
+            (Some(f), _) => (T::zero(), f, Source::Other),
             (None, _) => continue,
         };
-        let over_face = (feature == Feature::Face && !(gap < T::zero())).then(|| (n.clone(), gap.clone()));
-        let pad = T::c(raw_pad.min(opts.max_padding));
-        let short = gap.clone() - &one < pad.clone() * T::c(0.5);
-        let need = one.clone() + pad + extra - gap;
-        let relaxed = kind == Limits::Skin && !short;
-        limits.push((if relaxed { need.min(T::zero()) } else { need }, n));
-        from.push((c, over_face));
+        limits.push(limit(gap, n, raw_pad));
+        from.push((c, raw_pad, source));
     }
-    if from.iter().any(|f| f.1.is_some()) {
-        let rounding = T::c(opts.feasible_ulps * T::unit_roundoff());
-        let behind = |c: &Candidate<T>, (n, gap): &(Vec3<T>, T)| {
-            [&c.triangle.a, &c.triangle.b, &c.triangle.c].into_iter().all(|v| {
-                let rel = v - p;
-                dot(n, &rel) + gap <= rounding.clone() * max_abs(&rel, T::one())
-            })
+    // The limits of the faces `p` is over: direction and gap.
+    let faces: SmallVec<[(Vec3<T>, T); 4]> = limits
+        .iter()
+        .zip(&from)
+        .filter_map(|((_, n), (_, _, source))| match source {
+            Source::Face(gap) => Some((n.clone(), gap.clone())),
+            _ => None,
+        })
+        .collect();
+    if faces.is_empty() {
+        return true;
+    }
+    let rounding = T::c(opts.feasible_ulps * T::unit_roundoff());
+    let flat = T::c(INTERNAL_EDGE_DEGREES.to_radians().cos());
+    // Whether `c` lies behind the plane a face's limit asks `p` to clear.
+    let behind = |c: &Candidate<T>, raw_pad: f64, (n, gap): &(Vec3<T>, T)| {
+        [&c.triangle.a, &c.triangle.b, &c.triangle.c].into_iter().all(|v| {
+            let rel = v - p;
+            dot(n, &rel) + gap <= T::c(raw_pad / 2.0) + rounding.clone() * max_abs(&rel, T::one())
+        })
+    };
+    // A triangle's own unit normal, towards `p` (as a face's limit where
+    // `p` lies within half the padding of its plane), where it is within
+    // `INTERNAL_EDGE_DEGREES` of a face's limit.
+    let parallel = |(f, side): &(Vec3<T>, T), raw_pad: f64| {
+        let tied = side.clone().abs() <= T::c(raw_pad / 2.0);
+        let towards = if side.is_sign_negative() { -f.clone() } else { f.clone() };
+        faces.iter().find_map(|(m, _)| {
+            if dot(&towards, m) >= flat {
+                Some(towards.clone())
+            } else if tied && -dot(&towards, m) >= flat {
+                Some(-towards.clone())
+            } else {
+                None
+            }
+        })
+    };
+    for (l, (c, raw_pad, source)) in std::mem::take(limits).into_iter().zip(&from) {
+        let Source::Point(front) = source else {
+            limits.push(l);
+            continue;
         };
-        let dominated: SmallVec<[bool; 8]> = from
-            .iter()
-            .map(|(c, face)| face.is_none() && from.iter().filter_map(|f| f.1.as_ref()).any(|f| behind(c, f)))
-            .collect();
-        let mut k = 0;
-        limits.retain(|_| {
-            k += 1;
-            !dominated[k - 1]
-        });
+        if faces.iter().any(|f| behind(c, *raw_pad, f)) {
+            continue;
+        }
+        match front.as_ref().and_then(|f| parallel(f, *raw_pad)) {
+            Some(n) => limits.push(limit(dot(&n, &(p - &c.triangle.a)), n, *raw_pad)),
+            None => limits.push(l),
+        }
     }
     true
 }

@@ -554,3 +554,132 @@ fn robust_pushes_a_centre_on_a_large_floor_straight_out_f32() {
 fn robust_pushes_a_centre_on_a_large_floor_straight_out_f64() {
     centre_on_a_large_floor::<f64>(&[50.0, 1e9, 1e12]);
 }
+
+/// One frame of the robust response from `start` by `velocity` in the soup
+/// `(vertices, triangles)`: the move and its exact penetration.
+fn first_frame<T: Real>(
+    vertices: Vec<[f64; 3]>,
+    triangles: Vec<[u32; 3]>,
+    start: [f64; 3],
+    velocity: [f64; 3],
+) -> (sweepslide::respond::Move<T>, f64) {
+    use std::sync::Arc;
+    use sweepslide::world::TriangleMesh;
+    let world = World::<T>::new(Arc::new(TriangleMesh::new(vertices, triangles).unwrap())).unwrap();
+    let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+    let m =
+        move_body(&world, &body, &v::<T>(start), &v::<T>(velocity), None, &MoveOptions::new(Response::Robust)).unwrap();
+    let pen = penetration(&world, body.radii(), &m.position).unwrap_or(f64::NEG_INFINITY);
+    (m, pen)
+}
+
+/// The first version of the face's normal in the push-out took the side of
+/// the plane from its sign even within the plane's rounding, where the
+/// version before it had taken the front normal (a review of it, session
+/// 29, with 60,000 embedded starts): a body `2.5e-7` radii behind the wall
+/// of a slot narrower than it (`f32`) was pushed into the slot, 2.4 radii
+/// in all, and stayed inside all 20 frames (0.2 deep); one started on the
+/// face of a 3.7-degree valley was pushed 8 radii up it. Within half the
+/// padding of the plane the front normal decides again.
+fn barely_behind_a_face<T: Real>() {
+    let slot = vec![
+        [0.9, 0.0, -30.0],
+        [0.9, 3.0, -30.0],
+        [0.9, 3.0, 30.0],
+        [0.9, 0.0, 30.0],
+        [-0.9, 0.0, 30.0],
+        [-0.9, 3.0, 30.0],
+        [-0.9, 3.0, -30.0],
+        [-0.9, 0.0, -30.0],
+    ];
+    let (x, y) = (3.1893849655999196, 99.94912617697668);
+    let valley = vec![
+        [0.0, 0.0, -3.0],
+        [0.0, 0.0, 3.0],
+        [-x, y, 3.0],
+        [-x, y, -3.0],
+        [0.0, 0.0, 3.0],
+        [0.0, 0.0, -3.0],
+        [x, y, -3.0],
+        [x, y, 3.0],
+    ];
+    let quads = vec![[0, 1, 3], [1, 2, 3], [4, 5, 7], [5, 6, 7]];
+    let cases = [
+        ("slot", slot, [0.8999997527938323, 0.7933300099722582, -0.03891148006508871], [0.34988449428070073, 0.0, 0.0]),
+        (
+            "valley",
+            valley,
+            [-0.02900794412956477, 0.909052591396787, -0.5837815262731398],
+            [0.04573473917758793, -0.07612633357613999, -0.04382700859957461],
+        ),
+    ];
+    for (name, vertices, start, velocity) in cases {
+        let (m, pen) = first_frame::<T>(vertices, quads.clone(), start, velocity);
+        let name = format!("{name} {}", T::name());
+        assert!(!m.trace.embedded && pen <= 0.0, "{name}: embedded ({pen:e}) at {:?}", f64s(&m.position));
+        assert!(m.trace.depenetration <= 1.1, "{name}: pushed {} radii", m.trace.depenetration);
+    }
+}
+
+#[test]
+fn robust_pushes_a_body_barely_behind_a_face_out_by_its_front_f32() {
+    barely_behind_a_face::<f32>();
+}
+
+/// A flat floor of many triangles, turned in space and far from the
+/// origin: its vertices, rounded, lie off each other's planes by about `u`
+/// times their magnitude, more than the first version of the rule that
+/// drops the limits of triangles behind a face's plane allowed. The
+/// neighbours' limits it kept, in-plane and no longer contradictory, were
+/// solved into sideways pushes of up to 1.4 radii (a review, session 29:
+/// `f64` at `1e9`, `f32` at `1e4`). Their own planes, nearly parallel to
+/// the face's, now stand in, and the body is pushed straight out.
+fn far_turned_tessellated_floor<T: Real>(offset: f64, cell: f64) {
+    // An orthonormal frame turned about a slanting axis.
+    let (a, b) = (0.7f64, 0.4f64);
+    let e1 = [a.cos() * b.cos(), a.sin() * b.cos(), b.sin()];
+    let e2 = [-a.sin(), a.cos(), 0.0];
+    let up = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+    let at =
+        |s: f64, t: f64, h: f64| [0, 1, 2].map(|i| offset * [0.31, -0.17, 0.23][i] + s * e1[i] + t * e2[i] + h * up[i]);
+    let n = 8;
+    let mut vertices = Vec::new();
+    let mut triangles = Vec::new();
+    for i in 0..=n {
+        for j in 0..=n {
+            vertices.push(at((i as f64 - 4.0) * cell, (j as f64 - 4.0) * cell, 0.0));
+        }
+    }
+    for i in 0..n {
+        for j in 0..n {
+            let k = (i * (n + 1) + j) as u32;
+            let (c00, c01, c10, c11) = (k, k + 1, k + n as u32 + 1, k + n as u32 + 2);
+            if (i + j) % 2 == 0 {
+                triangles.extend([[c00, c10, c11], [c00, c11, c01]]);
+            } else {
+                triangles.extend([[c00, c10, c01], [c10, c11, c01]]);
+            }
+        }
+    }
+    for (s, t) in [(0.13, 0.07), (-0.41, 0.29), (0.3 * cell, -0.6 * cell), (0.0, 0.0)] {
+        let start = at(s, t, 0.0);
+        let (m, pen) = first_frame::<T>(vertices.clone(), triangles.clone(), start, [0.0; 3]);
+        let p = f64s(&m.position);
+        let moved = [0, 1, 2].map(|i| p[i] - start[i]);
+        let out: f64 = (0..3).map(|i| moved[i] * up[i]).sum();
+        let sideways = (0..3).map(|i| (moved[i] - out * up[i]).powi(2)).sum::<f64>().sqrt();
+        let name = format!("{} at {offset:e}, cells {cell}, from ({s}, {t})", T::name());
+        assert!(!m.trace.embedded && pen <= 0.0, "{name}: embedded ({pen:e})");
+        assert!(sideways <= 1e-3, "{name}: pushed {sideways:e} sideways (out {out})");
+    }
+}
+
+#[test]
+fn robust_pushes_out_of_a_far_turned_tessellated_floor_straight_f32() {
+    far_turned_tessellated_floor::<f32>(1e4, 1.0);
+}
+
+#[test]
+fn robust_pushes_out_of_a_far_turned_tessellated_floor_straight_f64() {
+    far_turned_tessellated_floor::<f64>(1e9, 0.3);
+}
