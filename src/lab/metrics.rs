@@ -241,6 +241,10 @@ impl Near {
     }
 }
 
+/// Jitter above this counts as jitter (a tenth of a percent of the speed):
+/// the threshold of the report's claims and of the random search.
+pub const JITTER_THRESHOLD: f64 = 1e-3;
+
 /// Jitter over the last `K = max(1, n / 4)` displacements `d_k` of the
 /// trajectory `positions` (frame 0 first): `(sum |d_k| - |sum d_k|) / (K
 /// speed)`. Zero for straight motion or rest, positive when the body

@@ -23,7 +23,7 @@ pub const REFERENCE_BITS: u32 = 256;
 /// [`MAX_BITS`](crate::real::MAX_BITS) (so a run beyond half of that is
 /// replayed less than twice as finely, and one at `MAX_BITS` at its own
 /// precision: its flips are then zero by construction). The replay's
-/// tolerances are the run's in absolute terms ([`same_tolerances`]), so
+/// tolerances are the run's in absolute terms (`same_tolerances`), so
 /// its own rounding must lie far below them: a review (session 29) found
 /// runs at 600 bits, compared with `Mpfr<256>`, flipping 4 to 6
 /// decisions where their 256-bit runs flipped none.
@@ -276,7 +276,7 @@ fn is_capped(stop: StopReason) -> bool {
 }
 
 /// `opts` for the replay in `R` at `bits`: every tolerance counted in units of
-/// the unit roundoff (the robust detection's touching tolerance, the robust
+/// the unit roundoff (the robust detection's touching and approach tolerances, the robust
 /// response's padding, admissibility and parallel-plane tolerances, and the
 /// final rounding's bound, which widens the resting band far from the
 /// origin) scaled
@@ -289,6 +289,7 @@ fn same_tolerances<T: Real, R: Real>(opts: &MoveOptions, bits: u32) -> Result<Mo
     let k = T::unit_roundoff() / R::with_bits(bits, R::unit_roundoff)?;
     let mut o = opts.clone();
     o.detect.touch_ulps *= k;
+    o.detect.approach_ulps *= k;
     let r = &mut o.robust;
     for x in
         [&mut r.padding_ulps, &mut r.position_ulps, &mut r.parallel_ulps, &mut r.feasible_ulps, &mut r.rounding_ulps]

@@ -10,7 +10,7 @@
 //! trial in four moves an ellipsoid instead of the scene's sphere; it has no
 //! ideal slide, so its runs are checked for all but freezes.
 
-use super::metrics::penetration;
+use super::metrics::{JITTER_THRESHOLD, penetration};
 use super::rng::Rng;
 use super::runner::{FrameRecord, Precision, RunConfig, RunResult, run_all};
 use super::scenes::{Scene, build};
@@ -246,9 +246,6 @@ fn command(t: &Trial, response: Response, precision: Precision) -> String {
     format!("sweepslide run {} --frames {FRAMES} --response {} --precision {precision}", t.args, response.name())
 }
 
-/// Jitter above this (of the speed) in a scene whose ideal is rest counts.
-const JITTER: f64 = 1e-3;
-
 /// A sliding run that covers less than this fraction of the ideal distance
 /// froze.
 pub const FREEZE: f64 = 0.5;
@@ -291,7 +288,7 @@ fn confirm_jitter(cfg: &RunConfig) -> Result<bool, Error> {
     let mut scene = (*cfg.scene).clone();
     scene.frames *= 4;
     let longer = RunConfig { scene: Arc::new(scene), ..cfg.clone() };
-    Ok(super::runner::run(&longer)?.result.jitter > JITTER)
+    Ok(super::runner::run(&longer)?.result.jitter > JITTER_THRESHOLD)
 }
 
 /// Runs `trials` random trials from `seed` on `jobs` threads and returns
@@ -371,7 +368,7 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
         if r.nan_frames > 0 {
             found(FailureKind::Nan, r.nan_frames as f64);
         }
-        if t.rest && r.jitter > JITTER && back_and_forth(&out.frames) && confirm_jitter(cfg)? {
+        if t.rest && r.jitter > JITTER_THRESHOLD && back_and_forth(&out.frames) && confirm_jitter(cfg)? {
             found(FailureKind::Jitter, r.jitter);
         }
         if let (Some(snag), Some(ideal)) = (r.snag, &cfg.scene.ideal)

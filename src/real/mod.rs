@@ -160,7 +160,7 @@ pub trait Real:
     /// For every other backend `f` simply runs, whatever `bits` says.
     ///
     /// # Errors
-    /// [`Error::PrecisionOutOfRange`] for [`MpfrDyn`] unless
+    /// [`crate::Error::PrecisionOutOfRange`] for [`MpfrDyn`] unless
     /// `MIN_BITS <= bits <= MAX_BITS` (`f` does not run).
     fn with_bits<R>(bits: u32, f: impl FnOnce() -> R) -> Result<R, crate::Error> {
         let _ = bits;

@@ -19,8 +19,7 @@ pub struct Claim {
     pub evidence: String,
 }
 
-/// Jitter above this counts as jitter (a tenth of a percent of the speed).
-pub const JITTER_THRESHOLD: f64 = 1e-3;
+pub use crate::lab::metrics::JITTER_THRESHOLD;
 /// A snag ratio below this counts as snagging.
 pub const SNAG_THRESHOLD: f64 = 0.999;
 

@@ -140,7 +140,7 @@ pub struct RobustOptions {
     /// Lowering it below `sqrt(3)` voids that check; the lab's `Mpfr<256>`
     /// replay scales it with the other `*_ulps` fields, so that it rests
     /// in the run's band. [`super::move_body`] refuses
-    /// `rounding_ulps * u > 1/2` ([`check_rounding`]).
+    /// `rounding_ulps * u > 1/2`: no rounding is larger.
     pub rounding_ulps: f64,
 }
 
@@ -871,9 +871,11 @@ impl<T: Real> Nearest<T> {
     }
 }
 
-/// Fills [`Frame::resting`] with the triangles within `1 + 2 pad` of `p`
-/// (by their position in the neighbourhood) and returns the one with the
-/// thinnest skin within `1 + max_padding` ([`Nearest`]).
+/// Fills [`Frame::resting`] with the triangles within `1 + 2 pad + band`
+/// of `p` (by their position in the neighbourhood; `band` is
+/// [`Frame::band`], zero unless the final rounding can undo the skin) and
+/// returns the one with the thinnest skin within `1 + max_padding + band`
+/// ([`Nearest`]).
 fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOptions) -> Option<Nearest<T>> {
     let one = T::one();
     let reach = one.clone() + T::c(opts.max_padding) + &frame.band;
@@ -927,12 +929,12 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
 /// `f32` at `5,800` radii from the origin, where the plane test computed
 /// `1.0000153`), which the skin, wider than that rounding, clears.
 ///
-/// Every push of the start counts in [`Trace::depenetration`] where the
+/// Every push of the start counts in [`Trace::depenetration`](super::Trace::depenetration) where the
 /// body started embedded (the skin's pushes after the push-out as well:
 /// the final rounding's bound takes the travel from it, [`land`]), and the
 /// candidates are gathered again when the pushes together pass the
 /// gather's margin. Where the push-out could not clear the body,
-/// [`Trace::embedded`] says so.
+/// [`Trace::embedded`](super::Trace::embedded) says so.
 ///
 /// # Errors
 /// As [`Neighbourhood::gather`](crate::detect::Neighbourhood::gather), for

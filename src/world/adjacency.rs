@@ -210,6 +210,9 @@ impl Adjacency {
 
     /// Every triangle that has the (welded) vertex `vertex` as a corner, in
     /// increasing order.
+    ///
+    /// # Panics
+    /// If `vertex` is not a vertex of the mesh.
     #[must_use]
     pub fn triangles_around(&self, vertex: u32) -> &[u32] {
         let w = self.weld[vertex as usize] as usize;
