@@ -1008,3 +1008,16 @@ fn runs_beyond_the_judges_and_replays_precision_are_judged_finer() {
         assert_eq!((r.decision_flips, r.plane_flips), (0, 0), "{spec}");
     }
 }
+
+/// `search --trials 0` ran nothing and printed an empty summary (a review,
+/// session 29); it is refused, and a search's summary names its counts.
+#[test]
+fn a_search_without_trials_is_refused_and_its_summary_names_its_counts() {
+    let out = sweepslide(&["search", "--trials", "0"]);
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--trials"));
+    let out = sweepslide(&["search", "--trials", "2", "--jobs", "1"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let summary = String::from_utf8_lossy(&out.stderr);
+    assert!(summary.contains("in 2 trials (seed 1); trials per family: "), "{summary}");
+}

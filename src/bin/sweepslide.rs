@@ -37,7 +37,7 @@ enum Command {
         /// Seed of the search.
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// Number of random scenes; each runs 3 responses x {f32, f64}.
+        /// Number of random scenes (at least 1); each runs 3 responses x {f32, f64}.
         #[arg(long, default_value_t = 200)]
         trials: usize,
         /// Worker threads (default: one per core).
@@ -607,6 +607,12 @@ fn search_command(
     json: bool,
     meshes: Option<&std::path::Path>,
 ) -> Result<(), Failure> {
+    if trials == 0 {
+        return Err(Failure(Error::InvalidArgument {
+            what: "--trials".into(),
+            message: "a search needs at least one trial".into(),
+        }));
+    }
     let meshes = match meshes {
         None => Vec::new(),
         Some(dir) => {
@@ -630,7 +636,7 @@ fn search_command(
     }
     let families: Vec<String> = outcome.trials.iter().map(|(family, n)| format!("{family} {n}")).collect();
     eprintln!(
-        "{} findings in {trials} trials (seed {seed}): {}; {} of them ellipsoids",
+        "{} finding(s) in {trials} trials (seed {seed}); trials per family: {}; {} of the trials with ellipsoids",
         outcome.findings.len(),
         families.join(", "),
         outcome.ellipsoids

@@ -32,10 +32,13 @@ fn describe(r: &RunResult) -> String {
     format!("{} / {}{seed}", r.scene, r.precision)
 }
 
-/// The worst run by `key` among `rs`, described with the value (a NaN
-/// value, which sorts above every other, says it could not be computed).
+/// The worst run by `key` among `rs`, the first of equals (the table's
+/// order: `f32` before the `mpfr24` that reproduces it), described with
+/// the value (a NaN value, which sorts above every other, says it could
+/// not be computed).
 fn worst<'a>(rs: impl Iterator<Item = &'a RunResult>, key: impl Fn(&RunResult) -> f64, unit: &str) -> String {
-    rs.max_by(|a, b| key(a).total_cmp(&key(b))).map_or("no runs".into(), |r| match key(r) {
+    let first_of_equals = rs.reduce(|best, r| if key(r).total_cmp(&key(best)).is_gt() { r } else { best });
+    first_of_equals.map_or("no runs".into(), |r| match key(r) {
         k if k.is_nan() => format!("not computable ({}: NaN frames)", describe(r)),
         k => format!("worst {k:.3e}{unit} ({})", describe(r)),
     })
