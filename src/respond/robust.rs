@@ -1233,10 +1233,11 @@ fn limits_at<T: Real>(
         })
     };
     // A triangle's own unit normal, towards `p` (as a face's limit where
-    // `p` lies within half the padding of its plane), where it is within
-    // `INTERNAL_EDGE_DEGREES` of a face's limit.
+    // `p` lies within half the padding of its plane and the triangle has
+    // two sides), where it is within `INTERNAL_EDGE_DEGREES` of a face's
+    // limit.
     let parallel = |(f, side): &(Vec3<T>, T), raw_pad: f64| {
-        let tied = side.clone().abs() <= T::c(raw_pad / 2.0);
+        let tied = frame.detect.two_sided && side.clone().abs() <= T::c(raw_pad / 2.0);
         let towards = if side.is_sign_negative() { -f.clone() } else { f.clone() };
         faces.iter().find_map(|(m, _)| {
             if dot(&towards, m) >= flat {
