@@ -155,19 +155,22 @@ pub struct RobustOptions {
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] naming `robust.rounding_ulps`.
+#[inline]
 pub(crate) fn check_rounding<T: Real>(opts: &RobustOptions) -> Result<(), Error> {
-    let share = opts.rounding_ulps * T::unit_roundoff();
-    if share <= 0.5 {
-        Ok(())
-    } else {
-        Err(Error::InvalidArgument {
-            what: "robust.rounding_ulps".into(),
-            message: format!(
-                "times the unit roundoff of {} it must be at most 1/2 (no rounding is larger), got {} ({share:e})",
-                T::name(),
-                opts.rounding_ulps
-            ),
-        })
+    if opts.rounding_ulps * T::unit_roundoff() <= 0.5 { Ok(()) } else { Err(rounding_too_large::<T>(opts)) }
+}
+
+/// The error of [`check_rounding`].
+#[cold]
+fn rounding_too_large<T: Real>(opts: &RobustOptions) -> Error {
+    Error::InvalidArgument {
+        what: "robust.rounding_ulps".into(),
+        message: format!(
+            "times the unit roundoff of {} it must be at most 1/2 (no rounding is larger), got {} ({:e})",
+            T::name(),
+            opts.rounding_ulps,
+            opts.rounding_ulps * T::unit_roundoff()
+        ),
     }
 }
 
