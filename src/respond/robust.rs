@@ -708,7 +708,7 @@ fn skin_in_crease<T: Real>(
     let Some(mut best) = nearest.filter(Nearest::short).map(|n| (n, p.clone())) else { return p };
     let mut limits = SmallVec::new();
     for _ in 0..SKIN_ROUNDS {
-        if !limits_at(frame, &p, &T::zero(), Limits::Skin, opts, &mut limits) {
+        if !limits_at(frame, &p, &T::zero(), Limits::Skin, opts, &mut limits, None) {
             break;
         }
         let Some(push) = crease_push(&mut limits, opts) else { break };
@@ -818,7 +818,7 @@ fn land_checked<T: Real>(
             best = Some((near, world.clone()));
         }
         // Clear limits are always complete.
-        let _ = limits_at(frame, &q, &extra, Limits::Clear, opts, &mut limits);
+        let _ = limits_at(frame, &q, &extra, Limits::Clear, opts, &mut limits, None);
         if round == SKIN_ROUNDS || limits.is_empty() {
             break;
         }
@@ -978,7 +978,8 @@ pub(crate) fn start<T: Real>(
 ///
 /// A round runs while some triangle is nearer than 1 ([`least_distance`])
 /// and moves the body by [`shortest_push`] over the limits of every
-/// triangle within `1 + max_padding` ([`limits_at`]): flat walls are
+/// triangle within `1 + max_padding` ([`limits_at`]; its simpler limits'
+/// push where that leaves nothing nearer than 1): flat walls are
 /// cleared in one round, a wedge along its bisector (where a push out of
 /// one wall at a time, the method until the nineteenth session, drives the
 /// body into the other and left one started 0.1 inside a 20 degree wedge
@@ -997,7 +998,7 @@ fn depenetrate<T: Real>(
     opts: &RobustOptions,
 ) -> Result<(Vec3<T>, f64), Error> {
     let mut since_gather = 0.0;
-    let mut limits = SmallVec::new();
+    let (mut limits, mut simpler) = (SmallVec::new(), SmallVec::new());
     // The best position measured: its nearest triangle's distance, the
     // position, the pushes since the gather then, and the gather's number.
     let (mut best, mut gathers) = (None::<(T, Vec3<T>, f64, u32)>, 0);
@@ -1010,8 +1011,15 @@ fn depenetrate<T: Real>(
             break;
         }
         // Clear limits are always complete.
-        let _ = limits_at(frame, &p, &T::zero(), Limits::Clear, opts, &mut limits);
-        let push = shortest_push(&mut limits, &T::c(MAX_PUSH + opts.max_padding), opts);
+        let _ = limits_at(frame, &p, &T::zero(), Limits::Clear, opts, &mut limits, Some(&mut simpler));
+        let longest = T::c(MAX_PUSH + opts.max_padding);
+        // The simpler limits' push where it clears the body, else all of
+        // them (see `limits_at`).
+        let simple = (!simpler.is_empty()).then(|| shortest_push(&mut simpler, &longest, opts));
+        let push = match simple.filter(|push| least_distance(frame, &(&p + push)).is_none()) {
+            Some(push) => push,
+            None => shortest_push(&mut limits, &longest, opts),
+        };
         let length = norm(&push).to_f64();
         frame.trace.depenetration += length;
         since_gather += length;
@@ -1114,28 +1122,31 @@ enum Source<T: Real> {
 /// triangle whose padding is capped could be within reach (the limits are
 /// then left incomplete).
 ///
-/// A triangle whose closest point is an edge or vertex sets no limit where
-/// it lies behind the plane of a triangle `p` is over, as that one's limit
-/// faces (every vertex at most half its own uncapped padding plus
-/// `feasible_ulps u m` in front of it, `m` the vertex's largest coordinate
-/// relative to `p`: the padding covers the rounding of its vertices'
-/// positions, which far from the origin lifts the vertices of a flat but
-/// tilted floor off each other's planes, and the second term that of
-/// the test): clearing that plane clears it. Its own limit, half-space along
-/// the direction from its edge, would ask for a push away from the edge
-/// that the plane does not need: a review (session 29) found a body whose
-/// centre started on a flat floor, `0.18` radii beside the seam of its two
-/// triangles, pushed out `0.64` radii sideways as well as up. One that
-/// does not lie behind it but whose own plane is within
-/// [`INTERNAL_EDGE_DEGREES`] of parallel to it (a neighbour on a floor
-/// whose vertices, rounded far from the origin, left it a little in front,
-/// or a shallow valley's other face) asks instead that `p` clear its own
-/// plane, on `p`'s side (on the face's where `p` lies within half the
-/// triangle's padding of it): it lies in that plane, so clearing it clears
-/// the triangle, and the limit nearly agrees with the face's. Its review
-/// found in-plane limits of such neighbours, kept and no longer
-/// contradictory, solved into pushes up to 1.4 radii sideways (`f64` at
-/// `1e9` from the origin).
+/// With `simpler`, it also receives a simpler set, for the push-out
+/// (empty where it would be the same): a triangle whose closest point is
+/// an edge or vertex sets no limit where it lies behind the plane of a
+/// triangle `p` is over, as that one's limit faces (every vertex at most
+/// half its own uncapped padding plus `feasible_ulps u m` in front of it,
+/// `m` the vertex's largest coordinate relative to `p`): clearing that
+/// plane clears it; and one that does not lie behind it but whose own
+/// plane is within [`INTERNAL_EDGE_DEGREES`] of parallel to it asks
+/// instead that `p` clear its own plane, on `p`'s side (on the face's
+/// where `p` lies within half the triangle's padding of it), which clears
+/// the triangle too. The edge's own limit, a half-space along the
+/// direction from the edge, asks for a push away from the edge that the
+/// plane may not need: a review (session 29) found a body whose centre
+/// started on a flat floor, `0.18` radii beside the seam of its two
+/// triangles, pushed out `0.64` radii sideways as well as up, and on
+/// turned tessellated floors far from the origin, whose rounded vertices
+/// lie a little off each other's planes, up to 1.4 radii sideways. But
+/// the simpler set asks for more than needed where the neighbour is a
+/// real step beside `p` (clearing its whole plane, where a push off its
+/// edge would do) and, with a neighbour whose vertices lie far, can
+/// count a raise of up to its padding as lying in the plane: a second
+/// review found bodies pushed into a ceiling over a step, or left inside
+/// a huge sheet raised `1.65e-3` radii, and stuck there. So
+/// [`depenetrate`] takes the simpler set's push only where it clears the
+/// body, and the full set's otherwise.
 fn limits_at<T: Real>(
     frame: &Frame<'_, T>,
     p: &Vec3<T>,
@@ -1143,6 +1154,7 @@ fn limits_at<T: Real>(
     kind: Limits,
     opts: &RobustOptions,
     limits: &mut SmallVec<[Limit<T>; 8]>,
+    simpler: Option<&mut SmallVec<[Limit<T>; 8]>>,
 ) -> bool {
     let one = T::one();
     let reach = one.clone() + T::c(opts.max_padding) + extra;
@@ -1223,6 +1235,8 @@ fn limits_at<T: Real>(
             _ => None,
         })
         .collect();
+    let Some(simpler) = simpler else { return true };
+    simpler.clear();
     if faces.is_empty() {
         return true;
     }
@@ -1252,18 +1266,26 @@ fn limits_at<T: Real>(
             }
         })
     };
-    for (l, (c, raw_pad, source)) in std::mem::take(limits).into_iter().zip(&from) {
+    let mut changed = false;
+    for (l, (c, raw_pad, source)) in limits.iter().zip(&from) {
         let Source::Point(front) = source else {
-            limits.push(l);
+            simpler.push(l.clone());
             continue;
         };
         if faces.iter().any(|f| behind(c, *raw_pad, f)) {
+            changed = true;
             continue;
         }
         match front.as_ref().and_then(|f| parallel(f, *raw_pad)) {
-            Some(n) => limits.push(limit(dot(&n, &(p - &c.triangle.a)), n, *raw_pad)),
-            None => limits.push(l),
+            Some(n) => {
+                changed = true;
+                simpler.push(limit(dot(&n, &(p - &c.triangle.a)), n, *raw_pad));
+            }
+            None => simpler.push(l.clone()),
         }
+    }
+    if !changed {
+        simpler.clear();
     }
     true
 }
