@@ -109,7 +109,7 @@ pub fn page(runs: &Runs, figures: &[Figure], elapsed_s: Option<f64>) -> String {
     );
     let _ = writeln!(
         out,
-        "<h1>sweepslide: error-analysis report</h1><p>{} matrix: {} runs ({} in the main table, {} on the precision dial){}. Data: <a href=\"results.json\">results.json</a>, <a href=\"results.csv\">results.csv</a>, <a href=\"runs.json\">runs.json</a>. Penetration is exact (MPFR, 512 bits, from the stored binary values); decision flips compare every frame with the same frame replayed in <code>Mpfr&lt;256&gt;</code> with the same tolerances (no rounding). See <code>docs/error-analysis.md</code> for the definitions.</p>",
+        "<h1>sweepslide: error-analysis report</h1><p>{} matrix: {} runs ({} in the main table, {} on the precision dial){}. Data: <a href=\"results.json\">results.json</a>, <a href=\"results.csv\">results.csv</a>, <a href=\"runs.json\">runs.json</a>. Penetration is exact (MPFR, 512 bits or more, from the stored binary values, after every frame); decision flips compare every frame with the same frame replayed in <code>Mpfr&lt;256&gt;</code> (twice the run&#39;s precision beyond 128 bits) with the same tolerances (no rounding). See <code>docs/error-analysis.md</code> for the definitions.</p>",
         if runs.info.quick { "Quick" } else { "Full" },
         runs.info.runs,
         main.len(),
