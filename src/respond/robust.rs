@@ -1224,8 +1224,12 @@ fn limits_at<T: Real>(
             (None, _) => continue,
         };
         limits.push(limit(gap, n, raw_pad));
-        from.push((c, raw_pad, source));
+        if simpler.is_some() {
+            from.push((c, raw_pad, source));
+        }
     }
+    let Some(simpler) = simpler else { return true };
+    simpler.clear();
     // The limits of the faces `p` is over: direction and gap.
     let faces: SmallVec<[(Vec3<T>, T); 4]> = limits
         .iter()
@@ -1235,8 +1239,6 @@ fn limits_at<T: Real>(
             _ => None,
         })
         .collect();
-    let Some(simpler) = simpler else { return true };
-    simpler.clear();
     if faces.is_empty() {
         return true;
     }
