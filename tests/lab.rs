@@ -242,7 +242,7 @@ fn sweepslide(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_sweepslide")).args(args).output().expect("the CLI runs")
 }
 
-const CONTRACT: [&str; 18] = [
+const CONTRACT: [&str; 19] = [
     "scene",
     "response",
     "detection",
@@ -261,6 +261,7 @@ const CONTRACT: [&str; 18] = [
     "decision_flips",
     "final_position",
     "ns_per_move",
+    "units_per_meter",
 ];
 
 #[test]
@@ -310,6 +311,52 @@ fn a_negative_radius_is_refused_with_its_reason_in_both_forms() {
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
         assert!(stderr.contains("must be positive"), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
+fn units_per_meter_sets_the_faithful_responses_eps_and_is_refused_where_eps_rounds_away() {
+    let eps_line = |upm: &str| {
+        let out = sweepslide(&[
+            "run",
+            "--scene",
+            "floor",
+            "--frames",
+            "2",
+            "--response",
+            "fauerby",
+            "--units-per-meter",
+            upm,
+        ]);
+        assert!(out.status.success(), "{upm}: {}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .find(|l| l.trim_start().starts_with("eps"))
+            .unwrap_or("")
+            .to_string()
+    };
+    assert!(eps_line("100").contains("5.000e-3 eSpace units"), "{}", eps_line("100"));
+    assert!(eps_line("1").contains("5.000e-5 eSpace units"), "{}", eps_line("1"));
+    for bad in ["0", "-1", "nan", "inf"] {
+        let out = sweepslide(&["run", "--scene", "floor", "--frames", "2", "--units-per-meter", bad]);
+        assert_eq!(out.status.code(), Some(2), "{bad}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    for (upm, rounds) in [("1e-300", "rounds to zero in f32"), ("1e300", "rounds to infinity in f32")] {
+        let out = sweepslide(&[
+            "run",
+            "--scene",
+            "floor",
+            "--frames",
+            "2",
+            "--response",
+            "linahan",
+            "--precision",
+            "f32",
+            "--units-per-meter",
+            upm,
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && stderr.contains(rounds), "{upm}: {stderr}");
     }
 }
 

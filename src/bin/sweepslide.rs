@@ -8,7 +8,7 @@ use sweepslide::Error;
 use sweepslide::detect::Detection;
 use sweepslide::lab::scenes::{self, BUILTIN, build};
 use sweepslide::lab::{Motion, Precision, RunConfig, RunOutput, Scene, run};
-use sweepslide::respond::Response;
+use sweepslide::respond::{FauerbyOptions, Response};
 
 #[derive(Parser)]
 #[command(
@@ -24,7 +24,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Run one scene with one response in one precision and print its metrics.
-    Run(RunArgs),
+    Run(Box<RunArgs>),
     /// List the built-in scenes.
     Scenes,
     /// Run the experiment matrix (or one shard of it) and write the report.
@@ -142,6 +142,10 @@ struct RunArgs {
     /// Move the whole scene (geometry and start) by X,Y,Z.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
     offset: Option<[f64; 3]>,
+    /// World units per metre (Fauerby's unitsPerMeter; default 1): the faithful responses' eps is
+    /// 5e-5 times this, in eSpace units
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_positive)]
+    units_per_meter: Option<f64>,
     /// Seed of seeded scenes and random-walk motion.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -270,6 +274,9 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
     }
     if let Some(r) = radii {
         scene = scene.with_radii(r);
+    }
+    if let Some(u) = args.units_per_meter {
+        scene.units_per_meter = u;
     }
     if let Some(o) = args.offset {
         // The offset itself is not rounded (the shifted coordinates are),
@@ -431,6 +438,18 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
             r.frames,
             r.seed
         );
+        if r.response != Response::Robust.name() {
+            out!(
+                "  eps           {:.3e} eSpace units (--units-per-meter {})",
+                FauerbyOptions { units_per_meter: r.units_per_meter, ..FauerbyOptions::default() }
+                    .very_close_distance(),
+                if (1e-3..1e6).contains(&r.units_per_meter) {
+                    r.units_per_meter.to_string()
+                } else {
+                    format!("{:e}", r.units_per_meter)
+                }
+            );
+        }
         out!(
             "  penetration   max {:.3e}, {} frame(s) inside{}",
             r.max_penetration,

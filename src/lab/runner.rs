@@ -191,6 +191,16 @@ pub struct RunResult {
     /// (zero in `runs.json` files written before the count existed).
     #[serde(default)]
     pub degenerate_triangles: usize,
+    /// The scene's world units per metre ([`Scene::units_per_meter`]),
+    /// which sets the faithful responses' `eps` (1 in `runs.json` files
+    /// written before it was recorded, as every run then used).
+    #[serde(default = "one")]
+    pub units_per_meter: f64,
+}
+
+/// The default of [`RunResult::units_per_meter`].
+fn one() -> f64 {
+    1.0
 }
 
 impl RunResult {
@@ -316,6 +326,21 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
     })??;
     let mut opts = MoveOptions::new(cfg.response);
     opts.detection = cfg.detection;
+    opts.fauerby.units_per_meter = scene.units_per_meter;
+    opts.linahan.very_close_distance = opts.fauerby.very_close_distance();
+    opts.validate()?;
+    let eps = opts.linahan.very_close_distance;
+    let rounded = T::c(eps);
+    if cfg.response != Response::Robust && (rounded.is_zero() || !rounded.is_finite()) {
+        return Err(Error::InvalidArgument {
+            what: format!("units per metre {:e}", scene.units_per_meter),
+            message: format!(
+                "the faithful responses' eps, 5e-5 times it ({eps:.3e} eSpace units), rounds to {} in {}",
+                if rounded.is_zero() { "zero" } else { "infinity" },
+                T::name()
+            ),
+        });
+    }
     let ref_opts = same_tolerances::<T, R>(&opts, ref_bits)?;
     let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let has_gravity = scene.gravity != [0.0; 3];
@@ -474,6 +499,7 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
         snag: scene.ideal.and_then(|ideal| snag_ratio(&start, &p, ideal, frames)),
         ns_per_move: ns as f64 / moves.max(1) as f64,
         degenerate_triangles: world.degenerate_in_backend(),
+        units_per_meter: scene.units_per_meter,
     };
     Ok(RunOutput { result, frames: records })
 }

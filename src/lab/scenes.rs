@@ -62,6 +62,12 @@ pub struct Scene {
     /// The displacement per frame of an ideal, frictionless slide (for the
     /// snag metric), where one is known.
     pub ideal: Option<[f64; 3]>,
+    /// World units per metre, Fauerby's `unitsPerMeter` (1 unless set):
+    /// the faithful responses' `eps`, Fauerby's `veryCloseDistance` and
+    /// Linahan's `very_close_dist`, is `5e-5 * units_per_meter` eSpace
+    /// units ([`crate::respond::FauerbyOptions::very_close_distance`]). The
+    /// robust response has no such constant.
+    pub units_per_meter: f64,
 }
 
 /// The built-in scenes: name, parameter meaning, description.
@@ -192,6 +198,7 @@ fn scene(name: String, description: &str, mesh: Arc<TriangleMesh>) -> Scene {
         frames: 200,
         motion: Motion::Constant,
         ideal: None,
+        units_per_meter: 1.0,
     }
 }
 
@@ -565,6 +572,7 @@ impl Scene {
             frames: 300,
             motion: Motion::RandomWalk { turn_deg: 8.0 },
             ideal: None,
+            units_per_meter: 1.0,
         })
     }
 
@@ -647,6 +655,7 @@ impl Scene {
             frames: velocities.len(),
             motion,
             ideal: None,
+            units_per_meter: 1.0,
         })
     }
 

@@ -131,6 +131,22 @@ fn fauerby_freezes_when_its_slide_is_shorter_than_very_close_distance() {
             let r = ratio(slow, response, precision);
             assert!(r > 0.95, "{response:?} {precision}: slide ratio {r}");
         }
+        // The freeze is `eps`'s: a hundred times smaller (0.01 world units
+        // per metre, `sweepslide run --units-per-meter 0.01`), the slow push
+        // slides too (0.98 in `f32`, the position's rounding again), and
+        // the run records the scale.
+        let mut scene = build("slot:6.609e-5", 1).unwrap().with_velocity(slow);
+        (scene.frames, scene.units_per_meter) = (60, 0.01);
+        let fine = run(&RunConfig {
+            scene: Arc::new(scene),
+            response: Response::Fauerby,
+            detection: None,
+            precision,
+            seed: 1,
+        })
+        .unwrap()
+        .result;
+        assert!(fine.snag.unwrap() > 0.95 && fine.units_per_meter == 0.01, "{precision}: {fine:?}");
     }
 }
 
