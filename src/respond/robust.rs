@@ -418,12 +418,16 @@ fn crease<T: Real>(a: &Vec3<T>, b: &Vec3<T>) -> Vec3<T> {
 fn meet_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, w: &Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
     let zero = T::zero();
     frame.seeds.clear();
+    // Each seed's candidate, for the rule below.
+    let mut candidates: SmallVec<[usize; 8]> = SmallVec::new();
     for &k in &frame.resting {
         let c = &frame.hood.triangles[k];
         if let Some(near) = proximity(c, p, frame.detect) {
             frame.seeds.push((c.index, near));
+            candidates.push(k);
         }
     }
+    drop_hidden_features(frame, &candidates, opts);
     let tol = T::c(opts.feasible_ulps * T::unit_roundoff()) * norm(w);
     let mut remaining = w.clone();
     loop {
@@ -469,6 +473,61 @@ fn meet_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, w: &Vec3<T>, opt
         frame.met.push(triangle);
         remaining = project_onto_cone(w, &frame.planes, opts);
     }
+}
+
+/// Drops from `frame.seeds` (with their candidates' positions in the
+/// neighbourhood, `candidates`) every edge or vertex contact whose feature
+/// lies on or behind the plane of a face contact, one whose closest point
+/// lies on its face, so that the centre is over it: every point of that
+/// feature is then at least as far from the centre, wherever it moves on
+/// the face's side, as the plane is, and the sweeps never meet it before
+/// the face. Met as a resting contact, its direction (from the feature to
+/// the centre) is tilted off the face's normal by the centre's offset
+/// along the plane over the distance, and the cone of the two is their
+/// crease: an active seam in a flat surface (a T-junction, a tile or a
+/// sliver beside a shared edge, a face given twice, the underside of a
+/// thin plate) stopped a body walking over it (a directed probe, thirtieth
+/// session: `f32` at the origin beside a sliver, and `1e4` from it on
+/// T-junctions, where the padding, and so the band within which resting
+/// contacts are met, grows with the coordinates). Internal edges already
+/// take the face's normal there ([`proximity`]).
+///
+/// Rounded: a feature vertex `v` counts as on the plane when
+/// `n . (v - q) <= tol + feasible_ulps u max(|v - q|, 1)` (`n`, `q` and
+/// `tol` the face contact's normal, closest point and distance tolerance),
+/// the tolerance of the face's distance plus the rounding of the normal
+/// over the lever `|v - q|`. A feature wrongly dropped costs no more than
+/// a resting contact not met: the sweeps still meet it if the motion
+/// comes within touching distance, and the skin is restored after the pass.
+fn drop_hidden_features<T: Real>(frame: &mut Frame<'_, T>, candidates: &[usize], opts: &RobustOptions) {
+    let faces: SmallVec<[usize; 4]> =
+        (0..frame.seeds.len()).filter(|&j| frame.seeds[j].1.feature == Feature::Face).collect();
+    if faces.is_empty() || faces.len() == frame.seeds.len() {
+        return;
+    }
+    let rounding = T::c(opts.feasible_ulps * T::unit_roundoff());
+    let hidden = |j: usize| {
+        let near = &frame.seeds[j].1;
+        let tri = &frame.hood.triangles[candidates[j]].triangle;
+        let (first, count) = match near.feature {
+            Feature::Face => return false,
+            Feature::Edge(i) => (usize::from(i), 2),
+            Feature::Vertex(i) => (usize::from(i), 1),
+        };
+        faces.iter().any(|&f| {
+            let face = &frame.seeds[f].1;
+            (first..first + count).all(|k| {
+                let rel = tri.vertex(k % 3) - &face.point;
+                dot(&face.normal, &rel) <= face.tol.clone() + rounding.clone() * max_abs(&rel, T::one())
+            })
+        })
+    };
+    let keep: SmallVec<[bool; 8]> = (0..frame.seeds.len()).map(|j| !hidden(j)).collect();
+    let mut k = 0;
+    frame.seeds.retain(|_| {
+        k += 1;
+        keep[k - 1]
+    });
 }
 
 /// Moves `p` out along the unit `normal` by up to `want`, but no further

@@ -14,6 +14,7 @@ mod respond_embedded;
 mod respond_far_origin;
 mod respond_hard_pushes;
 mod respond_huge_wall_slots;
+mod respond_messy_levels;
 mod respond_parallel_planes;
 mod respond_seam_hits;
 mod respond_shallow_climbs;

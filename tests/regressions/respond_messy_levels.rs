@@ -1,0 +1,155 @@
+//! Walks over flat surfaces whose seams are active although the surface is
+//! flat, as exported game levels have them, found by a directed probe in
+//! the thirtieth session (about 19,700 runs over T-junctions, faces given
+//! twice, decals, unwelded tiles and thin plates, each beside a welded
+//! control). An edge or vertex of such a seam, lying in the plane of the
+//! face the body stands over, was met as a resting contact with its
+//! geometric direction, tilted off the face's normal by the centre's
+//! offset from the seam; the cone of that direction and the face's normal
+//! is their crease, along the seam, and the body stopped there frame after
+//! frame (`Blocked`). The resting band within which such contacts are met
+//! grows with the padding, so the walks froze far from the origin in `f32`
+//! and, under a thin plate, wherever a sliver's capped padding reached.
+//! Such a feature now sets no resting contact (`robust::drop_hidden_features`).
+
+use std::sync::Arc;
+use sweepslide::Real;
+use sweepslide::geom::{Ellipsoid, Vec3, vec3};
+use sweepslide::lab::metrics::penetration;
+use sweepslide::respond::{MoveOptions, Response, move_body};
+use sweepslide::world::{TriangleMesh, World};
+
+/// Moves `radii` from `start` for `frames` frames of `velocity` (and
+/// `gravity` as a second pass), in `T`, asserting that no frame ends
+/// inside; returns the end position.
+fn walk<T: Real>(
+    mesh: &TriangleMesh,
+    radii: [f64; 3],
+    start: [f64; 3],
+    velocity: [f64; 3],
+    gravity: Option<[f64; 3]>,
+    frames: usize,
+) -> [f64; 3] {
+    let world = World::<T>::new(Arc::new(mesh.clone())).unwrap();
+    let body = Ellipsoid::<T>::new(radii).unwrap();
+    let v = |x: [f64; 3]| -> Vec3<T> { vec3(x[0], x[1], x[2]) };
+    let (velocity, gravity) = (v(velocity), gravity.map(v));
+    let options = MoveOptions::new(Response::Robust);
+    let mut p = v(start);
+    for frame in 0..frames {
+        p = move_body(&world, &body, &p, &velocity, gravity.as_ref(), &options).unwrap().position;
+        assert!(p.iter().all(Real::is_finite), "{} frame {frame}: {p:?}", T::name());
+        let depth = penetration(&world, body.radii(), &p);
+        assert!(depth.is_none_or(|d| d <= 0.0), "{} frame {frame}: {depth:?} inside", T::name());
+    }
+    [0, 1, 2].map(|i| p[i].to_f64())
+}
+
+/// A 20 x 20 floor at height `y` around `(x, z)`, split at `x`: the two
+/// halves' quads, the right one, with `t_junction`, as two quads meeting at
+/// the middle of the left one's edge (the seam's edges then belong to one
+/// triangle each: active).
+fn floor(x: f64, y: f64, z: f64, t_junction: bool) -> TriangleMesh {
+    let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+    let mut quad = |q: [[f64; 2]; 4]| {
+        let base = vertices.len() as u32;
+        vertices.extend(q.map(|[dx, dz]| [x + dx, y, z + dz]));
+        triangles.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+    };
+    quad([[-10.0, -10.0], [-10.0, 10.0], [0.0, 10.0], [0.0, -10.0]]);
+    if t_junction {
+        quad([[0.0, -10.0], [0.0, 0.0], [10.0, 0.0], [10.0, -10.0]]);
+        quad([[0.0, 0.0], [0.0, 10.0], [10.0, 10.0], [10.0, 0.0]]);
+    } else {
+        quad([[0.0, -10.0], [0.0, 10.0], [10.0, 10.0], [10.0, -10.0]]);
+    }
+    TriangleMesh::new(vertices, triangles).unwrap()
+}
+
+/// The character of `examples/character.rs` (radii `0.4, 0.9, 0.4`)
+/// walking slowly over a T-junction seam `1e4` from the origin in `f32`,
+/// gravity summed into the displacement (as Rapier's `move_shape` takes
+/// it): it stopped at the seam, `Blocked` from frame 140 on, 0.35 of its
+/// walk. The welded floor is the control.
+#[test]
+fn a_character_walks_over_a_t_junction_far_from_the_origin_in_f32() {
+    let (x, y, z) = (1e4, 5e3, -1e4);
+    let (speed, frames) = (0.002, 300);
+    let start = [x - 0.3, y + 0.9, z + 1.3];
+    let run = |t_junction| {
+        walk::<f32>(&floor(x, y, z, t_junction), [0.4, 0.9, 0.4], start, [speed, -0.0818, 0.0], None, frames)
+    };
+    let ideal = speed * frames as f64;
+    let (welded, seamed) = (run(false)[0] - start[0], run(true)[0] - start[0]);
+    assert!(welded > 0.9 * ideal, "the control walked {welded} of {ideal}");
+    assert!(seamed > 0.9 * ideal, "walked {seamed} of {ideal} (the welded floor: {welded})");
+}
+
+/// A thin plate (top at `y = 2`) whose underside, `1e-5` lower, is two
+/// triangles with a sliver along their seam, and a sphere sliding down over
+/// the top in `f32` at the origin: the underside's edges, behind the top's
+/// plane, were met as resting contacts within the sliver's capped padding,
+/// and the sphere moved 0.0022 of 0.327 along `x` in 60 frames (0.3269
+/// without the sliver, and in `f64`).
+#[test]
+fn a_sphere_slides_over_a_thin_plate_with_a_sliver_underneath_in_f32() {
+    let y = 1.999_989_986_419_677_7;
+    let vertices = vec![
+        [-1.0, y, -2.0],
+        [-1.0, y, -1.0],
+        [-0.999_989_986_419_677_7, y, -1.5],
+        [0.0, y, -1.0],
+        [-2.0, y, -1.0],
+        [-2.0, 2.0, -2.0],
+        [-1.0, 2.0, -1.0],
+        [-1.0, 2.0, -2.0],
+    ];
+    // The sliver, the two underside cells, the top.
+    let triangles = vec![[0, 1, 2], [0, 3, 1], [0, 1, 4], [5, 6, 7]];
+    let mesh = TriangleMesh::new(vertices, triangles).unwrap();
+    let start = [-1.139_174_938_201_904_3, 3.000_003_576_278_686_5, -1.736_238_837_242_126_5];
+    let velocity = [0.005_445_078_015_327_454, -0.019_243_918_359_279_633, -0.000_150_834_748_637_862_5];
+    let end = walk::<f32>(&mesh, [1.0; 3], start, velocity, Some([0.0, -0.05, 0.0]), 60);
+    let (moved, ideal) = (end[0] - start[0], 60.0 * velocity[0]);
+    assert!(moved > 0.95 * ideal, "moved {moved} of {ideal} along x");
+}
+
+/// The character pushed nearly head-on (5% of the push along it) into a
+/// wall `1e4` from the origin in `f32`, gravity as a second pass; at
+/// `z = 0` the wall's left part, one quad of full height, meets its right
+/// part, two quads one above the other, whose shared corner lies in the
+/// middle of the left part's edge (a T-junction). The character stopped at
+/// that seam, 0.49 of its travel along the wall, where it slides over the
+/// welded wall.
+#[test]
+fn a_character_slides_along_a_wall_with_a_t_junction_far_from_the_origin_in_f32() {
+    let (x, y, z, h) = (1e4, 5e3, -1e4, 1.5);
+    let mesh = |t_junction: bool| {
+        let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+        let mut quad = |q: [[f64; 3]; 4]| {
+            let base = vertices.len() as u32;
+            vertices.extend(q.map(|[dx, dy, dz]| [x + dx, y + dy, z + dz]));
+            triangles.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
+        };
+        quad([[h, 0.0, -10.0], [h, 4.0, -10.0], [h, 4.0, 0.0], [h, 0.0, 0.0]]);
+        if t_junction {
+            quad([[h, 0.0, 0.0], [h, 2.0, 0.0], [h, 2.0, 10.0], [h, 0.0, 10.0]]);
+            quad([[h, 2.0, 0.0], [h, 4.0, 0.0], [h, 4.0, 10.0], [h, 2.0, 10.0]]);
+        } else {
+            quad([[h, 0.0, 0.0], [h, 4.0, 0.0], [h, 4.0, 10.0], [h, 0.0, 10.0]]);
+        }
+        quad([[-h, 0.0, -10.0], [h, 0.0, -10.0], [h, 0.0, 10.0], [-h, 0.0, 10.0]]);
+        TriangleMesh::new(vertices, triangles).unwrap()
+    };
+    let (speed, share): (f64, f64) = (0.0667, 0.05);
+    let velocity = [speed, 0.0, speed * share].map(|v| v / (1.0 + share * share).sqrt());
+    let start = [x + h - 0.4 * 1.002, y + 0.9 * 1.001, z - 2.0];
+    let frames = 1200;
+    let run = |t_junction| {
+        walk::<f32>(&mesh(t_junction), [0.4, 0.9, 0.4], start, velocity, Some([0.0, -0.0818, 0.0]), frames)[2]
+            - start[2]
+    };
+    let (welded, seamed) = (run(false), run(true));
+    assert!(welded > 0.8 * velocity[2] * frames as f64, "the control slid {welded}");
+    assert!(seamed > 0.95 * welded, "slid {seamed} along the wall (the welded wall: {welded})");
+}
