@@ -461,7 +461,9 @@ impl<T: Real> Neighbourhood<T> {
 /// pruning considered its window, about 4,500).
 ///
 /// One exception, robust only: an inactive (internal) edge or vertex met at
-/// `t > 0` and the face of a triangle around it, met within the touching
+/// `t > 0`, or an active one lying on or behind the face's plane (the seam
+/// of a flat surface that is no shared edge: a T-junction, a face given
+/// twice; R30b), and the face of a triangle around it, met within the touching
 /// tolerance of the same time (`touch_ulps u s` over the speed, `s` the
 /// contact point's magnitude), give that face's hit at the earlier of the
 /// two times, if the face's normal lies within the internal-edge angle of
@@ -504,7 +506,7 @@ pub fn earliest_hit<'a, T: Real + 'a>(
                 None => (b, bc),
             },
         };
-        limit = Some(match seam_window(detection, &next.0, next.1, base, &swept.speed, opts) {
+        limit = Some(match seam_window(detection, &next.0, base, &swept.speed, opts) {
             Some(w) => next.0.t.clone() + w,
             None => next.0.t.clone(),
         });
@@ -513,24 +515,20 @@ pub fn earliest_hit<'a, T: Real + 'a>(
     best.map(|(h, _)| h)
 }
 
-/// For a robust hit `h` of candidate `c` on an inactive edge or vertex at
-/// `t > 0`, the window of time within which a face of a triangle sharing
-/// that feature stands in for it ([`earliest_hit`]): the touching
+/// For a robust hit `h` on an edge or vertex at `t > 0`, the window of
+/// time within which a face of a triangle around that feature may stand
+/// in for it ([`seam_face`] decides): the touching
 /// tolerance `opts.touch_ulps u s` (`s` the magnitude of the contact point
 /// relative to `base`, at least 1) over the speed `speed`. `None` for any
 /// other hit.
 fn seam_window<T: Real>(
     detection: Detection,
     h: &Hit<T>,
-    c: &Candidate<T>,
     base: &Vec3<T>,
     speed: &T,
     opts: &DetectOptions,
 ) -> Option<T> {
-    let seam = detection == Detection::Robust
-        && h.feature != Feature::Face
-        && h.t > T::zero()
-        && !sphere_triangle::is_active(h.feature, c.active);
+    let seam = detection == Detection::Robust && h.feature != Feature::Face && h.t > T::zero();
     seam.then(|| {
         let s = max_abs(&(&h.point - base), T::one());
         T::c(opts.touch_ulps * T::unit_roundoff()) * s / speed
@@ -539,8 +537,16 @@ fn seam_window<T: Real>(
 
 /// The face hit that stands in for a seam hit ([`earliest_hit`]): of the
 /// two hits `a` and `b` (each with its candidate), one a face and the
-/// other an inactive edge or vertex met at `t > 0` within [`seam_window`]
-/// of it, the face's hit (its point and normal) at the earlier of the two
+/// other an edge or vertex met at `t > 0` within [`seam_window`]
+/// of it, inactive or lying on or behind the face's plane (each of its
+/// vertices `v` with `n . (v - q) <= d + touch_ulps u max(|v - q|, 1)`,
+/// `n` and `q` the face hit's normal and point, `d` the window as a
+/// distance: the seam of a flat surface that is no shared edge, such as a
+/// T-junction, where the neighbour's edge tied with the face and its
+/// tilted direction slid landings sideways by up to `5.8e-4` radii in
+/// `f32` and a push into a doubled wall `0.014` radii along it; a directed
+/// probe, thirtieth session, R30b), the face's hit (its point and normal)
+/// at the earlier of the two
 /// times, if the face is local to the feature and its normal lies within
 /// the default internal-edge angle ([`INTERNAL_EDGE_DEGREES`], not a
 /// mesh's own) of the feature's direction (a wall met at a corner beside a
@@ -566,7 +572,7 @@ fn seam_face<'a, T: Real>(
         (_, Feature::Face) => (b, a),
         _ => return None,
     };
-    let window = seam_window(detection, seam, sc, base, speed, opts)?;
+    let window = seam_window(detection, seam, base, speed, opts)?;
     // The feature's vertices: an edge's two, from its index, or the one.
     let (first, count) = match seam.feature {
         Feature::Edge(i) => (usize::from(i), 2),
@@ -582,7 +588,18 @@ fn seam_face<'a, T: Real>(
         || norm_squared(&(&face.point - &seam.point)) <= T::c(8.0) * &window * speed;
     let aligned = dot(&seam.normal, &face.normal) >= T::c(INTERNAL_EDGE_DEGREES.to_radians().cos());
     let near = face.t <= seam.t.clone() + &window && seam.t <= face.t.clone() + &window;
-    (shares && aligned && near && !between_faces(seam, sc, face))
+    // An active feature only where it lies on or behind the face's plane
+    // (up to the window as a distance and the rounding of the normal over
+    // the lever): a seam of a flat surface that is no shared edge.
+    let hidden = || {
+        let rounding = T::c(opts.touch_ulps * T::unit_roundoff());
+        (first..first + count).all(|k| {
+            let rel = shared[k % 3] - &face.point;
+            dot(&face.normal, &rel) <= window.clone() * speed + rounding.clone() * max_abs(&rel, T::one())
+        })
+    };
+    let inactive = !sphere_triangle::is_active(seam.feature, sc.active);
+    (shares && aligned && near && !between_faces(seam, sc, face) && (inactive || hidden()))
         .then(|| (Hit { t: face.t.clone().min(seam.t.clone()), ..face.clone() }, fc))
 }
 

@@ -10,7 +10,11 @@
 //! frame (`Blocked`). The resting band within which such contacts are met
 //! grows with the padding, so the walks froze far from the origin in `f32`
 //! and, under a thin plate, wherever a sliver's capped padding reached.
-//! Such a feature now sets no resting contact (`robust::drop_hidden_features`).
+//! Such a feature now sets no resting contact (`robust::drop_hidden_features`,
+//! R30a). The same seams, met during a sweep at the time of the face under
+//! the centre, won the tie with their tilted direction, as the seam of
+//! R28a had: a face now stands in for an active edge or vertex too where it
+//! lies on or behind the face's plane (`detect::earliest_hit`, R30b).
 
 use std::sync::Arc;
 use sweepslide::Real;
@@ -152,4 +156,113 @@ fn a_character_slides_along_a_wall_with_a_t_junction_far_from_the_origin_in_f32(
     let (welded, seamed) = (run(false), run(true));
     assert!(welded > 0.8 * velocity[2] * frames as f64, "the control slid {welded}");
     assert!(seamed > 0.95 * welded, "slid {seamed} along the wall (the welded wall: {welded})");
+}
+
+/// The floor of `tests/regressions/respond_seam_hits.rs`'s landings (two
+/// quads sharing `z = 0`), with the `z > 0` half split at `x = 0` so that
+/// its corner `(0, 0, 0)` lies in the middle of the other half's edge (a
+/// T-junction), or given twice, the copy reversed (a two-sided floor).
+fn seamed_floor(t_junction: bool) -> TriangleMesh {
+    let welded = vec![
+        [-10.0, 0.0, -10.0],
+        [10.0, 0.0, -10.0],
+        [10.0, 0.0, 0.0],
+        [-10.0, 0.0, 0.0],
+        [10.0, 0.0, 10.0],
+        [-10.0, 0.0, 10.0],
+    ];
+    let quads = vec![[0, 3, 2], [0, 2, 1], [3, 5, 4], [3, 4, 2]];
+    if t_junction {
+        let mut vertices = welded[..4].to_vec();
+        vertices.extend([[-10.0, 0.0, 10.0], [0.0, 0.0, 10.0], [0.0, 0.0, 0.0], [10.0, 0.0, 10.0]]);
+        let triangles = vec![[0, 3, 2], [0, 2, 1], [3, 4, 5], [3, 5, 6], [6, 5, 7], [6, 7, 2]];
+        TriangleMesh::new(vertices, triangles).unwrap()
+    } else {
+        let mut vertices = welded.clone();
+        vertices.extend(welded);
+        let mut triangles = quads.clone();
+        triangles.extend(quads.iter().map(|t| [t[0] + 6, t[2] + 6, t[1] + 6]));
+        TriangleMesh::new(vertices, triangles).unwrap()
+    }
+}
+
+/// A sphere dropped onto such a floor a hair beside the seam (`dz` in
+/// `f32`, `dz / 1e4` in `f64`) falls straight down: it slid sideways by up
+/// to `5.8e-4` radii in `f32` (48 of these 96 landings beyond `16 u`) and
+/// by `2e-8` in `f64` (24), where the welded floor gives none. The
+/// neighbour's edge, active although the floor is flat, tied with the face
+/// under the centre and won with its geometric direction, tilted by the
+/// offset (R28a's tie, which only an inactive edge's face stood in for).
+fn lands_straight<T: Real>(scale: f64) {
+    for t_junction in [true, false] {
+        let world = World::<T>::new(Arc::new(seamed_floor(t_junction))).unwrap();
+        let body = Ellipsoid::<T>::sphere(1.0).unwrap();
+        for dz in [-1.931e-4, 1.931e-4, -5e-5, 5e-5, -1e-3, 1e-3, -3e-4, 3e-4] {
+            for x in [0.25, 3.7, -6.1, 1e-4] {
+                for g in [1.0, 0.3, 3.0] {
+                    let start: Vec3<T> = vec3(x, 1.001, dz * scale);
+                    let gravity: Vec3<T> = vec3(0.0, -g, 0.0);
+                    let options = MoveOptions::new(Response::Robust);
+                    let end = move_body(&world, &body, &start, &Vec3::zeros(), Some(&gravity), &options).unwrap();
+                    let side = [0, 2].map(|i| (end.position[i].to_f64() - start[i].to_f64()).abs());
+                    assert!(
+                        side[0].max(side[1]) <= 16.0 * T::unit_roundoff(),
+                        "{} t-junction {t_junction} from ({x}, 1.001, {}) falling {g}: slid {side:?}",
+                        T::name(),
+                        dz * scale
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn landings_beside_a_t_junction_or_on_a_doubled_floor_fall_straight_f32() {
+    lands_straight::<f32>(1.0);
+}
+
+#[test]
+fn landings_beside_a_t_junction_or_on_a_doubled_floor_fall_straight_f64() {
+    lands_straight::<f64>(1e-4);
+}
+
+/// A sphere of radius 0.5 on a floor pushed `push` straight into the seam
+/// of `tests/regressions/respond_seam_hits.rs`'s wall given twice, the copy
+/// reversed (a two-sided wall), `offset` from the origin: the copy's
+/// diagonal, active (an edge of four triangles), tied with the face and
+/// carried the push along the wall, as before R28a: `0.014` radii for a
+/// push of 100 in `f32` at the origin, `0.037` at `1e3`, and `9e-8` for
+/// `4e5` in `f64`. It must stop square, within `16 u` of the push.
+fn stops_square_at_a_doubled_wall<T: Real>(offset: f64, push: f64) {
+    let o = [offset, offset * 0.5, -offset];
+    let mut vertices: Vec<[f64; 3]> = Vec::new();
+    let wall = [[20.0, -5.0, -5.0], [20.0, -5.0, 5.0], [20.0, 5.0, 5.0], [20.0, 5.0, -5.0]];
+    vertices.extend(wall);
+    vertices.extend(wall);
+    vertices.extend([[-30.0, -0.5, -30.0], [-30.0, -0.5, 30.0], [30.0, -0.5, 30.0], [30.0, -0.5, -30.0]]);
+    let vertices = vertices.into_iter().map(|v| [v[0] + o[0], v[1] + o[1], v[2] + o[2]]).collect();
+    let triangles = vec![[0, 1, 2], [0, 2, 3], [4, 6, 5], [4, 7, 6], [8, 9, 10], [8, 10, 11]];
+    let world = World::<T>::new(Arc::new(TriangleMesh::new(vertices, triangles).unwrap())).unwrap();
+    let body = Ellipsoid::<T>::sphere(0.5).unwrap();
+    let start: Vec3<T> = vec3(o[0], o[1], o[2]);
+    let options = MoveOptions::new(Response::Robust);
+    let end = move_body(&world, &body, &start, &vec3(push, 0.0, 0.0), None, &options).unwrap().position;
+    let [x, y, z] = [0, 1, 2].map(|i| end[i].to_f64() - start[i].to_f64());
+    let what = format!("{} offset {offset:e} push {push:e}: moved ({x}, {y}, {z})", T::name());
+    assert!(z.abs() <= 16.0 * T::unit_roundoff() * push, "{what}: slid along the wall");
+    assert!(y.abs() <= 1e-3 && (19.49..19.5).contains(&x), "{what}: not square at the wall");
+    assert!(penetration(&world, body.radii(), &end).is_none_or(|d| d <= 0.0), "{what}: inside");
+}
+
+#[test]
+fn a_push_into_a_doubled_wall_stops_square_f32() {
+    for offset in [0.0, 1e3] {
+        stops_square_at_a_doubled_wall::<f32>(offset, 100.0);
+    }
+}
+
+#[test]
+fn a_push_into_a_doubled_wall_stops_square_f64() {
+    stops_square_at_a_doubled_wall::<f64>(0.0, 4e5);
 }
