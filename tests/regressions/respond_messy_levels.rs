@@ -163,15 +163,7 @@ fn a_character_slides_along_a_wall_with_a_t_junction_far_from_the_origin_in_f32(
 /// its corner `(0, 0, 0)` lies in the middle of the other half's edge (a
 /// T-junction), or given twice, the copy reversed (a two-sided floor).
 fn seamed_floor(t_junction: bool) -> TriangleMesh {
-    let welded = vec![
-        [-10.0, 0.0, -10.0],
-        [10.0, 0.0, -10.0],
-        [10.0, 0.0, 0.0],
-        [-10.0, 0.0, 0.0],
-        [10.0, 0.0, 10.0],
-        [-10.0, 0.0, 10.0],
-    ];
-    let quads = vec![[0, 3, 2], [0, 2, 1], [3, 5, 4], [3, 4, 2]];
+    let (welded, quads) = super::respond_seam_hits::seamed_floor();
     if t_junction {
         let mut vertices = welded[..4].to_vec();
         vertices.extend([[-10.0, 0.0, 10.0], [0.0, 0.0, 10.0], [0.0, 0.0, 0.0], [10.0, 0.0, 10.0]]);

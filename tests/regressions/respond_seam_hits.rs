@@ -124,14 +124,10 @@ fn a_push_into_a_gently_convex_ridge_stops_square() {
     }
 }
 
-/// A unit sphere falling onto a floor of two coplanar quads, its centre
-/// `1.9e-4` radii beside their shared edge, in `T`: the landing must not
-/// push it sideways. The neighbour's seam edge and the face under the
-/// centre are met at the same time up to rounding, and with the edge's
-/// direction (tilted by the offset) the rest of the fall slid the body
-/// `1.9e-4` radii off in `f32` (a probe of messy soups, twenty-eighth
-/// session: 148 of 1,320 such landings in `f32`, 22 in `f64`).
-fn lands_without_sliding_beside_a_seam<T: Real>() {
+/// A 20 x 20 floor of two quads sharing the edge `z = 0`, welded: its
+/// vertices and triangles (also the base of
+/// `respond_messy_levels.rs`'s seamed floors).
+pub(crate) fn seamed_floor() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     let vertices = vec![
         [-10.0, 0.0, -10.0],
         [10.0, 0.0, -10.0],
@@ -140,7 +136,18 @@ fn lands_without_sliding_beside_a_seam<T: Real>() {
         [10.0, 0.0, 10.0],
         [-10.0, 0.0, 10.0],
     ];
-    let triangles = vec![[0, 3, 2], [0, 2, 1], [3, 5, 4], [3, 4, 2]];
+    (vertices, vec![[0, 3, 2], [0, 2, 1], [3, 5, 4], [3, 4, 2]])
+}
+
+/// A unit sphere falling onto a floor of two coplanar quads, its centre
+/// `1.9e-4` radii beside their shared edge, in `T`: the landing must not
+/// push it sideways. The neighbour's seam edge and the face under the
+/// centre are met at the same time up to rounding, and with the edge's
+/// direction (tilted by the offset) the rest of the fall slid the body
+/// `1.9e-4` radii off in `f32` (a probe of messy soups, twenty-eighth
+/// session: 148 of 1,320 such landings in `f32`, 22 in `f64`).
+fn lands_without_sliding_beside_a_seam<T: Real>() {
+    let (vertices, triangles) = seamed_floor();
     let world = World::<T>::new(Arc::new(TriangleMesh::new(vertices, triangles).unwrap())).unwrap();
     let body = Ellipsoid::<T>::sphere(1.0).unwrap();
     let start: Vec3<T> = vec3(0.25, 1.001, -1.931e-4);
