@@ -573,18 +573,11 @@ fn seam_face<'a, T: Real>(
         _ => return None,
     };
     let window = seam_window(detection, seam, base, speed, opts)?;
-    // The feature's vertices: an edge's two, from its index, or the one.
-    let (first, count) = match seam.feature {
-        Feature::Edge(i) => (usize::from(i), 2),
-        Feature::Vertex(i) => (usize::from(i), 1),
-        Feature::Face => return None,
-    };
-    let corners = |c: &'a Candidate<T>| [&c.triangle.a, &c.triangle.b, &c.triangle.c];
-    let (shared, around) = (corners(sc), corners(fc));
+    let around = [&fc.triangle.a, &fc.triangle.b, &fc.triangle.c];
     // Or its contact point within twice the offset the tie allows: on a
     // mesh finer than that offset the face under the centre can lie a few
     // triangles from the feature met.
-    let shares = (first..first + count).any(|k| around.contains(&shared[k % 3]))
+    let shares = seam.feature.corners().any(|k| around.contains(&sc.triangle.vertex(k)))
         || norm_squared(&(&face.point - &seam.point)) <= T::c(8.0) * &window * speed;
     let aligned = dot(&seam.normal, &face.normal) >= T::c(INTERNAL_EDGE_DEGREES.to_radians().cos());
     let near = face.t <= seam.t.clone() + &window && seam.t <= face.t.clone() + &window;
@@ -592,11 +585,8 @@ fn seam_face<'a, T: Real>(
     // (up to the window as a distance and the rounding of the normal over
     // the lever): a seam of a flat surface that is no shared edge.
     let hidden = || {
-        let rounding = T::c(opts.touch_ulps * T::unit_roundoff());
-        (first..first + count).all(|k| {
-            let rel = shared[k % 3] - &face.point;
-            dot(&face.normal, &rel) <= window.clone() * speed + rounding.clone() * max_abs(&rel, T::one())
-        })
+        let ulps = T::c(opts.touch_ulps * T::unit_roundoff());
+        sc.triangle.feature_on_or_behind(seam.feature, &face.normal, &face.point, &(window.clone() * speed), &ulps)
     };
     let inactive = !sphere_triangle::is_active(seam.feature, sc.active);
     (shares && aligned && near && !between_faces(seam, sc, face) && (inactive || hidden()))

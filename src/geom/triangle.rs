@@ -28,7 +28,36 @@ pub enum Feature {
     Vertex(u8),
 }
 
+impl Feature {
+    /// The indices of the vertices it spans: an edge's two (the second
+    /// taken modulo 3 by [`Triangle::vertex`]), a vertex's one, none for
+    /// the face.
+    #[must_use]
+    pub fn corners(self) -> std::ops::Range<usize> {
+        match self {
+            Feature::Face => 0..0,
+            Feature::Edge(i) => usize::from(i)..usize::from(i) + 2,
+            Feature::Vertex(i) => usize::from(i)..usize::from(i) + 1,
+        }
+    }
+}
+
 impl<T: Real> Triangle<T> {
+    /// Whether `feature` (an edge or a vertex; `false` for the face) lies
+    /// on or behind the plane through `q` with unit normal `n`: every
+    /// vertex `v` of it has `n . (v - q) <= slack + ulps max(|v - q|, 1)`
+    /// (`max` of the coordinates' magnitudes), `slack` the plane's own
+    /// distance tolerance and `ulps` the rounding of `n` and of the
+    /// difference over the lever `v - q`.
+    #[must_use]
+    pub fn feature_on_or_behind(&self, feature: Feature, n: &Vec3<T>, q: &Vec3<T>, slack: &T, ulps: &T) -> bool {
+        feature != Feature::Face
+            && feature.corners().all(|k| {
+                let rel = self.vertex(k) - q;
+                dot(n, &rel) <= slack.clone() + ulps.clone() * super::max_abs(&rel, T::one())
+            })
+    }
+
     /// A triangle from its three vertices.
     #[must_use]
     pub fn new(a: Vec3<T>, b: Vec3<T>, c: Vec3<T>) -> Self {

@@ -505,21 +505,12 @@ fn drop_hidden_features<T: Real>(frame: &mut Frame<'_, T>, candidates: &[usize],
     if faces.is_empty() || faces.len() == frame.seeds.len() {
         return;
     }
-    let rounding = T::c(opts.feasible_ulps * T::unit_roundoff());
+    let ulps = T::c(opts.feasible_ulps * T::unit_roundoff());
     let hidden = |j: usize| {
-        let near = &frame.seeds[j].1;
-        let tri = &frame.hood.triangles[candidates[j]].triangle;
-        let (first, count) = match near.feature {
-            Feature::Face => return false,
-            Feature::Edge(i) => (usize::from(i), 2),
-            Feature::Vertex(i) => (usize::from(i), 1),
-        };
+        let (tri, feature) = (&frame.hood.triangles[candidates[j]].triangle, frame.seeds[j].1.feature);
         faces.iter().any(|&f| {
             let face = &frame.seeds[f].1;
-            (first..first + count).all(|k| {
-                let rel = tri.vertex(k % 3) - &face.point;
-                dot(&face.normal, &rel) <= face.tol.clone() + rounding.clone() * max_abs(&rel, T::one())
-            })
+            tri.feature_on_or_behind(feature, &face.normal, &face.point, &face.tol, &ulps)
         })
     };
     let keep: SmallVec<[bool; 8]> = (0..frame.seeds.len()).map(|j| !hidden(j)).collect();
