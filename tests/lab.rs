@@ -316,18 +316,13 @@ fn a_negative_radius_is_refused_with_its_reason_in_both_forms() {
 
 #[test]
 fn units_per_meter_sets_the_faithful_responses_eps_and_is_refused_where_eps_rounds_away() {
+    let run = |upm: &str, extra: &[&str]| {
+        let mut args = vec!["run", "--scene", "floor", "--frames", "2", "--units-per-meter", upm];
+        args.extend(extra);
+        sweepslide(&args)
+    };
     let eps_line = |upm: &str| {
-        let out = sweepslide(&[
-            "run",
-            "--scene",
-            "floor",
-            "--frames",
-            "2",
-            "--response",
-            "fauerby",
-            "--units-per-meter",
-            upm,
-        ]);
+        let out = run(upm, &["--response", "fauerby"]);
         assert!(out.status.success(), "{upm}: {}", String::from_utf8_lossy(&out.stderr));
         String::from_utf8_lossy(&out.stdout)
             .lines()
@@ -338,23 +333,11 @@ fn units_per_meter_sets_the_faithful_responses_eps_and_is_refused_where_eps_roun
     assert!(eps_line("100").contains("5.000e-3 eSpace units"), "{}", eps_line("100"));
     assert!(eps_line("1").contains("5.000e-5 eSpace units"), "{}", eps_line("1"));
     for bad in ["0", "-1", "nan", "inf"] {
-        let out = sweepslide(&["run", "--scene", "floor", "--frames", "2", "--units-per-meter", bad]);
+        let out = run(bad, &[]);
         assert_eq!(out.status.code(), Some(2), "{bad}: {}", String::from_utf8_lossy(&out.stderr));
     }
     for (upm, rounds) in [("1e-300", "rounds to zero in f32"), ("1e300", "rounds to infinity in f32")] {
-        let out = sweepslide(&[
-            "run",
-            "--scene",
-            "floor",
-            "--frames",
-            "2",
-            "--response",
-            "linahan",
-            "--precision",
-            "f32",
-            "--units-per-meter",
-            upm,
-        ]);
+        let out = run(upm, &["--response", "linahan", "--precision", "f32"]);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(!out.status.success() && stderr.contains(rounds), "{upm}: {stderr}");
     }
