@@ -72,8 +72,9 @@
 //! distance to the triangle's nearest vertex, the displacement and the
 //! position relative to the frame's start, at least one), `g` the tilt factor of the triangle's unit normal
 //! ([`Candidate::tilt`]: `1 / sin` of its largest angle, so a flat cap's
-//! distance is off by about `u g s`; `g <= 2` for any triangle whose
-//! largest angle is at most 150 degrees) and `|start|` the largest eSpace
+//! distance to its plane is off by about `u g s`; `g <= 2` for any triangle whose
+//! largest angle is at most 150 degrees; 1 for a contact on an edge or a
+//! vertex, whose distance does not use the normal) and `|start|` the largest eSpace
 //! coordinate of the frame's start
 //! (which bounds the rounding of the final `start + displacement`). In `f32`
 //! at the origin that is about `3e-6`, in `f64` about `5e-15`, at `1e5` in
@@ -209,13 +210,22 @@ impl RobustOptions {
 /// `u` times its magnitude: a body that travels far in one frame meets
 /// triangles whose relative coordinates are that far from zero; without
 /// `|p|` a review found one that moved 84 radii in a frame, in `f32`,
-/// resting 2.7e-6 radii inside a ramp); a flat cap's padding is multiplied
-/// by its normal's tilt factor over `free_tilt`
-/// ([`RobustOptions::tilt_factor`]), because its unit normal's direction
-/// carries errors of a few `u` times that factor, so the distance to its
-/// plane, `s` from its nearest vertex, is off by as much times `s` (fuzz
-/// finding F14). A triangle degenerate in this precision (no normal) keeps
-/// the plain padding.
+/// resting 2.7e-6 radii inside a ramp). Where the contact is on the face
+/// (`feature`, the part of the triangle its distance was measured to), a
+/// flat cap's padding is multiplied by its normal's tilt factor over
+/// `free_tilt` ([`RobustOptions::tilt_factor`]), because its unit normal's
+/// direction carries errors of a few `u` times that factor, so the
+/// distance to its plane, `s` from its nearest vertex, is off by as much
+/// times `s` (fuzz finding F14). A contact on an edge or a vertex keeps the
+/// plain padding: its distance is measured to the edge's line or the
+/// vertex and never uses the normal. (A foot on the face that the side
+/// tests place just outside it is measured to the nearest side instead,
+/// which is farther by the square of that error over twice the distance.)
+/// Until the thirty-first session edges and vertices had the face's
+/// padding: a crack-filling sliver lying in a floor, whose padding is the
+/// cap in `f32`, held a body `0.01` radii off its edges, which lie in the
+/// floor, and a slow walk over it stopped or bobbed. A triangle degenerate
+/// in this precision (no normal) keeps the plain padding.
 ///
 /// `least_s` is `max(1, |p|)` ([`least_s`]), computed once by callers that
 /// pad many triangles at one position. The padding is at most
@@ -226,9 +236,10 @@ fn padding<T: Real>(
     p: &Vec3<T>,
     w: &Vec3<T>,
     c: &Candidate<T>,
+    feature: Feature,
     opts: &RobustOptions,
 ) -> T {
-    T::c(uncapped_padding(start_magnitude, least_s, p, w, c, opts).min(opts.max_padding))
+    T::c(uncapped_padding(start_magnitude, least_s, p, w, c, feature, opts).min(opts.max_padding))
 }
 
 /// [`padding`] before its cap `max_padding`: a bound, with the margin of
@@ -241,6 +252,7 @@ fn uncapped_padding<T: Real>(
     p: &Vec3<T>,
     w: &Vec3<T>,
     c: &Candidate<T>,
+    feature: Feature,
     opts: &RobustOptions,
 ) -> f64 {
     let u = T::unit_roundoff();
@@ -249,7 +261,8 @@ fn uncapped_padding<T: Real>(
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
     let s = magnitude(w).max(nearest).max(least_s);
     // The tilt never exceeds the shape factor: most triangles need no more.
-    let tilt = if c.shape.to_f64() <= opts.free_tilt { 1.0 } else { opts.tilt_factor(c.tilt()) };
+    let plane = feature == Feature::Face && c.shape.to_f64() > opts.free_tilt;
+    let tilt = if plane { opts.tilt_factor(c.tilt()) } else { 1.0 };
     opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude
 }
 
@@ -586,7 +599,15 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             continue;
         }
         grazed.clear();
-        let pad = padding(frame.start_magnitude, least_s(&p), &p, &remaining, &candidate_e(frame, hit.triangle), opts);
+        let pad = padding(
+            frame.start_magnitude,
+            least_s(&p),
+            &p,
+            &remaining,
+            &candidate_e(frame, hit.triangle),
+            hit.feature,
+            opts,
+        );
         // The gap to the contact along its normal now. Within the resting
         // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
         // out, so rounding cannot make it toggle between neighbouring floats.
@@ -679,7 +700,8 @@ fn grazes_met<T: Real>(
         && (hit.t <= T::zero() || {
             // Later in the sweep, the body must also near the triangle by
             // less than half its padding over the rest of the sweep.
-            let pad = padding(frame.start_magnitude, least_s(p), p, remaining, &candidate_e(frame, hit.triangle), opts);
+            let candidate = candidate_e(frame, hit.triangle);
+            let pad = padding(frame.start_magnitude, least_s(p), p, remaining, &candidate, hit.feature, opts);
             !(approach * (T::one() - &hit.t) > pad * T::c(0.5))
         })
 }
@@ -940,7 +962,7 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
         if beyond(c, p, &reach, &reach_sq) {
             continue;
         }
-        let (point, _) = closest_point(c, p);
+        let (point, feature) = closest_point(c, p);
         // Squared, so that the square root is taken only within reach (the
         // cutoff moves by the rounding of `reach^2`, far inside the
         // `max_padding` of room it keeps beyond any resting contact).
@@ -949,7 +971,7 @@ fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOpt
             continue;
         }
         let dist = dist_sq.sqrt();
-        let pad = padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts);
+        let pad = padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, feature, opts);
         if dist <= one.clone() + T::c(2.0) * &pad + &frame.band {
             frame.resting.push(k);
         }
@@ -1210,7 +1232,10 @@ fn limits_at<T: Real>(
     let reach = one.clone() + T::c(opts.max_padding) + extra;
     let tiny = T::c(opts.feasible_ulps * T::unit_roundoff());
     let s = least_s(p);
-    let raw_padding = |c: &Candidate<T>| uncapped_padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, opts);
+    // The face's padding for every limit: a gap below is a distance to the
+    // plane wherever `p` is over the face or behind it.
+    let raw_padding =
+        |c: &Candidate<T>| uncapped_padding(frame.start_magnitude, s, p, &Vec3::zeros(), c, Feature::Face, opts);
     limits.clear();
     // Per limit: its triangle, its uncapped padding and where it came from.
     type From<'a, T> = (&'a Candidate<T>, f64, Source<T>);

@@ -258,3 +258,49 @@ fn a_push_into_a_doubled_wall_stops_square_f32() {
 fn a_push_into_a_doubled_wall_stops_square_f64() {
     stops_square_at_a_doubled_wall::<f64>(0.0, 4e5);
 }
+
+/// A 20 x 20 floor at `y = 0` welded along `x = 0`, with, where `sliver`,
+/// a crack-filler lying in it along that seam: a flat cap from `(0, 0,
+/// -10)` to `(0, 0, 10)` whose third vertex is `1e-5` off the seam's
+/// middle, over the right half.
+fn sliver_floor(sliver: bool) -> TriangleMesh {
+    let mut vertices = vec![
+        [-10.0, 0.0, -10.0],
+        [-10.0, 0.0, 10.0],
+        [0.0, 0.0, 10.0],
+        [0.0, 0.0, -10.0],
+        [10.0, 0.0, 10.0],
+        [10.0, 0.0, -10.0],
+    ];
+    let mut triangles = vec![[0, 1, 2], [0, 2, 3], [3, 2, 4], [3, 4, 5]];
+    if sliver {
+        vertices.push([1e-5, 0.0, 0.0]);
+        triangles.push([3, 2, 6]);
+    }
+    TriangleMesh::new(vertices, triangles).unwrap()
+}
+
+/// Slow walks over a sliver lying in a floor ([`sliver_floor`]) in `f32` at
+/// the origin, gravity as a second pass: a unit sphere and the character of
+/// `examples/character.rs`. The sliver's normal is ill-conditioned (tilt
+/// factor about `1e6`), so its padding is the cap `0.01`, and its edges,
+/// which lie in the floor, had that padding too: the body was held `0.01`
+/// off them and a walk of `0.002` a frame stopped at the seam, 0.38 to 0.80
+/// of its path (the character 0.45; since R30a bobbing in place). An edge's
+/// distance does not use the normal, and it now has the plain padding
+/// (R31a). The floor without the sliver is the control.
+#[test]
+fn slow_walks_over_a_sliver_lying_in_a_floor_go_the_whole_way_in_f32() {
+    for (radii, height, speed) in [([1.0; 3], 1.0, 0.002), ([1.0; 3], 1.0, 0.001), ([0.4, 0.9, 0.4], 0.9, 0.002)] {
+        let frames = (1.0 / speed) as usize;
+        let start = [-0.5, height, 0.3];
+        let run = |sliver| {
+            walk::<f32>(&sliver_floor(sliver), radii, start, [speed, 0.0, 0.0], Some([0.0, -0.05, 0.0]), frames)[0]
+                - start[0]
+        };
+        let ideal = speed * frames as f64;
+        let (welded, seamed) = (run(false), run(true));
+        assert!(welded > 0.95 * ideal, "{radii:?} at {speed}: the control walked {welded} of {ideal}");
+        assert!(seamed > 0.95 * ideal, "{radii:?} at {speed}: walked {seamed} of {ideal} (welded: {welded})");
+    }
+}
