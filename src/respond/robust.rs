@@ -73,8 +73,9 @@
 //! position relative to the frame's start, at least one), `g` the tilt factor of the triangle's unit normal
 //! ([`Candidate::tilt`]: `1 / sin` of its largest angle, so a flat cap's
 //! distance to its plane is off by about `u g s`; `g <= 2` for any triangle whose
-//! largest angle is at most 150 degrees; 1 for a contact on an edge or a
-//! vertex, whose distance does not use the normal) and `|start|` the largest eSpace
+//! largest angle is at most 150 degrees; for a contact on an edge or a
+//! vertex, whose distance does not use the normal, the excess over 1 adds
+//! no more than the inradius squared over two, [`side_excess`]) and `|start|` the largest eSpace
 //! coordinate of the frame's start
 //! (which bounds the rounding of the final `start + displacement`). In `f32`
 //! at the origin that is about `3e-6`, in `f64` about `5e-15`, at `1e5` in
@@ -216,12 +217,12 @@ impl RobustOptions {
 /// `free_tilt` ([`RobustOptions::tilt_factor`]), because its unit normal's
 /// direction carries errors of a few `u` times that factor, so the
 /// distance to its plane, `s` from its nearest vertex, is off by as much
-/// times `s` (fuzz finding F14). A contact on an edge or a vertex keeps the
-/// plain padding: its distance is measured to the edge's line or the
-/// vertex and never uses the normal. (A foot on the face that the side
-/// tests place just outside it is measured to the nearest side instead,
-/// which is farther by the square of that error over twice the distance.)
-/// Until the thirty-first session edges and vertices had the face's
+/// times `s` (fuzz finding F14). A contact on an edge or a vertex is
+/// measured to the edge's line or the vertex, without the normal, and has
+/// the plain padding plus at most [`side_excess`] (the inradius squared
+/// over two: a foot on the face that the side tests, with the tilted
+/// normal, placed outside it is measured to the nearest side instead).
+/// Until the thirty-first session (R31a) edges and vertices had the face's
 /// padding: a crack-filling sliver lying in a floor, whose padding is the
 /// cap in `f32`, held a body `0.01` radii off its edges, which lie in the
 /// floor, and a slow walk over it stopped or bobbed. A triangle degenerate
@@ -260,10 +261,35 @@ fn uncapped_padding<T: Real>(
     let magnitude = |v: &Vec3<T>| max_abs(v, T::zero()).to_f64();
     let nearest = [&tri.a, &tri.b, &tri.c].into_iter().map(|v| magnitude(&(v - p))).fold(f64::INFINITY, f64::min);
     let s = magnitude(w).max(nearest).max(least_s);
+    let plain = opts.padding_ulps * u * s;
     // The tilt never exceeds the shape factor: most triangles need no more.
-    let plane = feature == Feature::Face && c.shape.to_f64() > opts.free_tilt;
-    let tilt = if plane { opts.tilt_factor(c.tilt()) } else { 1.0 };
-    opts.padding_ulps * u * s * tilt + opts.position_ulps * u * start_magnitude
+    let tilted = if c.shape.to_f64() > opts.free_tilt { plain * (opts.tilt_factor(c.tilt()) - 1.0) } else { 0.0 };
+    let tilt = if feature == Feature::Face || tilted == 0.0 { tilted } else { tilted.min(side_excess(c, u)) };
+    plain + tilt + opts.position_ulps * u * start_magnitude
+}
+
+/// How much farther than the triangle a contact measured to its nearest
+/// side can be, where the foot of the centre on the face lies inside the
+/// triangle but the side tests, with a tilted normal, placed it outside:
+/// the foot is then within the inradius `r` of the nearest side, and for a
+/// centre at least 1 from the plane the side is farther than the face by at
+/// most `r^2 / 2`. `r = |e0 x e1| / perimeter` is computed in `f64` from
+/// the working precision's coordinates, plus `2 u` times their largest
+/// magnitude for their rounding. A review of the first version of R31a,
+/// which gave edges and vertices the plain padding alone, found spheres
+/// pushed onto flat caps `1e5` to `1e7` long and `1e-4` high ending up to
+/// `1.5e-6` inside in `f64` (`tests/regressions/respond_messy_levels.rs`).
+fn side_excess<T: Real>(c: &Candidate<T>, u: f64) -> f64 {
+    let tri = &c.triangle;
+    let f = |v: &Vec3<T>| [v[0].to_f64(), v[1].to_f64(), v[2].to_f64()];
+    let (a, b, d) = (f(&tri.a), f(&tri.b), f(&tri.c));
+    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let len = |x: [f64; 3]| x.iter().map(|k| k * k).sum::<f64>().sqrt();
+    let (e0, e1, e2) = (sub(b, a), sub(d, b), sub(a, d));
+    let area2 = len([e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]]);
+    let far = [a, b, d].iter().flatten().fold(0.0f64, |m, k| m.max(k.abs()));
+    let r = area2 / (len(e0) + len(e1) + len(e2)) + 2.0 * u * far;
+    r * r / 2.0
 }
 
 /// The most parts [`parts`] splits a pass into.

@@ -304,3 +304,25 @@ fn slow_walks_over_a_sliver_lying_in_a_floor_go_the_whole_way_in_f32() {
         assert!(seamed > 0.95 * ideal, "{radii:?} at {speed}: walked {seamed} of {ideal} (welded: {welded})");
     }
 }
+
+/// A unit sphere pushed along the normal of a lone flat cap in `f64`: long
+/// edge `4e5`, third vertex `1.8e-4` off its middle (tilt factor about
+/// `5e8`). The side tests, with the cap's tilted normal, placed the foot
+/// outside the face, and the sweep met an edge instead, farther than the
+/// face by up to the inradius squared over two; the first version of R31a,
+/// which gave edge and vertex contacts the plain padding, let the sphere
+/// end `1.6e-10` inside from the first frame on (a review, thirty-first
+/// session; the face's padding had kept it `0.01` clear). Edge and vertex
+/// contacts now add that excess (`robust::side_excess`).
+#[test]
+fn a_sphere_pushed_onto_a_long_flat_cap_stays_out_f64() {
+    let vertices = vec![
+        [91_605.497_945_589_58, -99_055.513_371_561_7, 147_636.167_712_511_9],
+        [-91_605.497_945_589_58, 99_055.513_371_561_7, -147_636.167_712_511_9],
+        [6_218.756_038_037_029, -6_724.509_581_134_333_5, 10_022.469_212_504_63],
+    ];
+    let mesh = TriangleMesh::new(vertices, vec![[0, 1, 2]]).unwrap();
+    let start = [-57_494.903_657_251_28, 62_171.270_223_623_89, -92_660.735_733_745_94];
+    let velocity = [0.145_026_275_646_800_1, -0.437_838_518_269_744_2, -0.383_750_975_622_698_94];
+    walk::<f64>(&mesh, [1.0; 3], start, velocity, None, 20);
+}
