@@ -74,8 +74,9 @@
 //! ([`Candidate::tilt`]: `1 / sin` of its largest angle, so a flat cap's
 //! distance to its plane is off by about `u g s`; `g <= 2` for any triangle whose
 //! largest angle is at most 150 degrees; for a contact on an edge or a
-//! vertex, whose distance does not use the normal, the excess over 1 adds
-//! no more than the inradius squared over two, [`side_excess`]) and `|start|` the largest eSpace
+//! vertex, whose distance does not use the normal, the tilt's share
+//! `padding_ulps * u * s * (max(1, g / free_tilt) - 1)` is capped at the
+//! triangle's inradius squared over two, `side_excess`) and `|start|` the largest eSpace
 //! coordinate of the frame's start
 //! (which bounds the rounding of the final `start + displacement`). In `f32`
 //! at the origin that is about `3e-6`, in `f64` about `5e-15`, at `1e5` in
