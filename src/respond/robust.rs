@@ -94,7 +94,7 @@
 
 use super::{Frame, StopReason};
 use crate::detect::{Candidate, DetectOptions, Detection, Hit, closest_point, proximity};
-use crate::geom::{Feature, Triangle, Vec3, cross, dot, max_abs, norm, norm_squared, normalize};
+use crate::geom::{Feature, Triangle, Vec3, cross, dot, max_abs, norm, norm_squared, normalize, to_f64};
 use crate::world::INTERNAL_EDGE_DEGREES;
 use crate::{Error, Real};
 use smallvec::SmallVec;
@@ -281,15 +281,10 @@ fn uncapped_padding<T: Real>(
 /// pushed onto flat caps `1e5` to `1e7` long and `1e-4` high ending up to
 /// `1.5e-6` inside in `f64` (`tests/regressions/respond_messy_levels.rs`).
 fn side_excess<T: Real>(c: &Candidate<T>, u: f64) -> f64 {
-    let tri = &c.triangle;
-    let f = |v: &Vec3<T>| [v[0].to_f64(), v[1].to_f64(), v[2].to_f64()];
-    let (a, b, d) = (f(&tri.a), f(&tri.b), f(&tri.c));
-    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-    let len = |x: [f64; 3]| x.iter().map(|k| k * k).sum::<f64>().sqrt();
-    let (e0, e1, e2) = (sub(b, a), sub(d, b), sub(a, d));
-    let area2 = len([e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]]);
-    let far = [a, b, d].iter().flatten().fold(0.0f64, |m, k| m.max(k.abs()));
-    let r = area2 / (len(e0) + len(e1) + len(e2)) + 2.0 * u * far;
+    let [a, b, d] = [&c.triangle.a, &c.triangle.b, &c.triangle.c].map(to_f64);
+    let perimeter = (b - a).norm() + (d - b).norm() + (a - d).norm();
+    let far = [a, b, d].iter().map(|v| v.amax()).fold(0.0, f64::max);
+    let r = (b - a).cross(&(d - a)).norm() / perimeter + 2.0 * u * far;
     r * r / 2.0
 }
 
