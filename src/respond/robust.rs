@@ -282,9 +282,10 @@ fn uncapped_padding<T: Real>(
 /// `1.5e-6` inside in `f64` (`tests/regressions/respond_messy_levels.rs`).
 fn side_excess<T: Real>(c: &Candidate<T>, u: f64) -> f64 {
     let [a, b, d] = [&c.triangle.a, &c.triangle.b, &c.triangle.c].map(to_f64);
-    let perimeter = (b - a).norm() + (d - b).norm() + (a - d).norm();
+    let (ab, ad) = (b - a, d - a);
+    let perimeter = ab.norm() + (d - b).norm() + ad.norm();
     let far = [a, b, d].iter().map(|v| v.amax()).fold(0.0, f64::max);
-    let r = (b - a).cross(&(d - a)).norm() / perimeter + 2.0 * u * far;
+    let r = ab.cross(&ad).norm() / perimeter + 2.0 * u * far;
     r * r / 2.0
 }
 
@@ -621,15 +622,8 @@ pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T
             continue;
         }
         grazed.clear();
-        let pad = padding(
-            frame.start_magnitude,
-            least_s(&p),
-            &p,
-            &remaining,
-            &candidate_e(frame, hit.triangle),
-            hit.feature,
-            opts,
-        );
+        let candidate = candidate_e(frame, hit.triangle);
+        let pad = padding(frame.start_magnitude, least_s(&p), &p, &remaining, &candidate, hit.feature, opts);
         // The gap to the contact along its normal now. Within the resting
         // band [pad / 2, 2 pad] the body neither creeps closer nor is pushed
         // out, so rounding cannot make it toggle between neighbouring floats.
