@@ -92,17 +92,17 @@ fn direction(a: f64, b: f64) -> V {
 
 // ------------------------------------------------------------ strategies --
 
-/// A triangle of size about `size` around the origin in the plane of unit
-/// normal `n`: well shaped (angles above about 15 degrees) or a sliver of
-/// height `2 * 10^-k` over a base of 2 (shape factor up to about 1000, the
-/// sweep checks' range).
-fn triangle() -> impl Strategy<Value = [V; 3]> {
+/// A triangle of size `10^log_size` around the origin in the plane of a
+/// random unit normal: well shaped (angles above about 15 degrees) or a
+/// sliver of height `2 * 10^-k` over a base of 2 (shape factor up to about
+/// 1000, the sweep checks' range).
+fn triangle(log_size: std::ops::Range<f64>) -> impl Strategy<Value = [V; 3]> {
     (
         (0.0..1.0f64, 0.0..1.0f64, 0.0..6.3f64),
         prop::array::uniform3(0.3..2.5f64),
         prop::array::uniform3(-0.5..0.5f64),
         prop_oneof![3 => Just(None), 1 => (0.0..2.9f64, -0.5..1.5f64).prop_map(Some)],
-        -3.0..1.0f64,
+        log_size,
     )
         .prop_map(|((a, b, spin), radii, jitter, sliver, log_size)| {
             let n = direction(a, b);
@@ -138,7 +138,7 @@ fn gap() -> impl Strategy<Value = f64> {
 /// head-on (exactly grazing included), the whole case moved by `offset`.
 fn sweep_case(offsets: Vec<f64>) -> impl Strategy<Value = (V, V, [V; 3])> {
     (
-        triangle(),
+        triangle(SMALL),
         (0usize..3, 0.0..1.0f64, 0.0..1.0f64, prop::sample::select(vec![0u8, 1, 2])),
         (0.0..1.0f64, 0.0..1.0f64),
         gap(),
@@ -178,7 +178,7 @@ fn sweep_case(offsets: Vec<f64>) -> impl Strategy<Value = (V, V, [V; 3])> {
 /// sphere sink into the edge unseen).
 fn grazing_edge_case() -> impl Strategy<Value = (V, V, [V; 3])> {
     (
-        triangle(),
+        triangle(SMALL),
         (0usize..3, any::<bool>(), any::<bool>()),
         (1i32..14, any::<bool>()),
         -1.0..1.0f64,
@@ -216,7 +216,7 @@ fn grazing_edge_case() -> impl Strategy<Value = (V, V, [V; 3])> {
 /// edge carried that error into the decision whether it approaches).
 fn overlapping_edge_case() -> impl Strategy<Value = (V, V, [V; 3])> {
     (
-        triangle(),
+        triangle(SMALL),
         (0usize..3, 0.05..0.95f64),
         (1i32..16, 0.0..2.0 * PI),
         (-1.0..1.5f64, prop_oneof![Just(None), (0.0..12.0f64, any::<bool>()).prop_map(Some)], any::<bool>()),
@@ -246,9 +246,9 @@ fn overlapping_edge_case() -> impl Strategy<Value = (V, V, [V; 3])> {
 /// the plane's time is accurate in distance but not along the track, and
 /// a contact point on the face computed outside it let the sphere reach a
 /// later feature too deep).
-fn grazing_face_case() -> impl Strategy<Value = (V, V, [V; 3])> {
+fn grazing_face_case(log_size: std::ops::Range<f64>) -> impl Strategy<Value = (V, V, [V; 3])> {
     (
-        triangle(),
+        triangle(log_size),
         (0usize..3, 0.0..1.0f64, any::<bool>()),
         (1i32..14, any::<bool>()),
         0.0..2.0 * PI,
@@ -287,7 +287,7 @@ fn assert_sweep<T: Real>(base: V, vel: V, tri: [V; 3]) -> Result<(), TestCaseErr
 /// from razor-thin to nearly flat).
 fn piece() -> impl Strategy<Value = Vec<[V; 3]>> {
     prop_oneof![
-        (triangle(), prop::array::uniform3(-3.0..3.0f64)).prop_map(|(t, at)| vec![t.map(|p| add(p, at))]),
+        (triangle(SMALL), prop::array::uniform3(-3.0..3.0f64)).prop_map(|(t, at)| vec![t.map(|p| add(p, at))]),
         (
             (0.0..1.0f64, 0.0..1.0f64, 0.0..6.3f64),
             prop_oneof![
@@ -541,6 +541,9 @@ fn check_obj(text: &str) -> Result<(), TestCaseError> {
 
 const NEAR: f64 = 0.0;
 
+/// Triangle sizes from `1e-3` to 10 radii (`triangle`'s `log_size`).
+const SMALL: std::ops::Range<f64> = -3.0..1.0;
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 1500, ..ProptestConfig::default() })]
 
@@ -555,12 +558,22 @@ proptest! {
     }
 
     #[test]
-    fn robust_sweep_grazing_face_f32((base, vel, tri) in grazing_face_case()) {
+    fn robust_sweep_grazing_face_f32((base, vel, tri) in grazing_face_case(SMALL)) {
         assert_sweep::<f32>(base, vel, tri)?;
     }
 
     #[test]
-    fn robust_sweep_grazing_face_f64((base, vel, tri) in grazing_face_case()) {
+    fn robust_sweep_grazing_face_f64((base, vel, tri) in grazing_face_case(SMALL)) {
+        assert_sweep::<f64>(base, vel, tri)?;
+    }
+
+    #[test]
+    fn robust_sweep_grazing_large_face_f32((base, vel, tri) in grazing_face_case(1.0..4.5)) {
+        assert_sweep::<f32>(base, vel, tri)?;
+    }
+
+    #[test]
+    fn robust_sweep_grazing_large_face_f64((base, vel, tri) in grazing_face_case(1.0..4.5)) {
         assert_sweep::<f64>(base, vel, tri)?;
     }
 

@@ -377,7 +377,10 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
     }
 
     // Face interior: the plane reached with the contact point inside.
-    let face_hit = || face_contact(c, &rel, normal.as_ref()?, &plane_dist, base, vel, opts.touch_ulps, &wins);
+    let face_hit = || {
+        let plane = SeenPlane { n: normal.as_ref()?, dist: &plane_dist, from: p[nearest] };
+        face_contact(c, &rel, &plane, base, vel, opts.touch_ulps, &wins)
+    };
     // Clear of the plane by more than the margin, the body cannot be
     // touching anything now: a face hit needs no closest point.
     let clear_of_plane = plane_dist > clear;
@@ -743,40 +746,42 @@ fn edge_beyond_end<T: Real>(
 /// arguments.)
 ///
 /// The plane's time `t_p = (plane_dist - 1) / -(n . vel)` is accurate in
-/// distance but not along the track: at a grazing angle its error, `u s`
-/// over `|n . vel|`, moves the contact point by `u s |vel| / |n . vel|`
-/// (fuzz findings F16 and F17). So when the contact point at `t_p` is
-/// outside the triangle, the face is still touched if, at some moment of
-/// the window where the centre's plane distance is within the touching
-/// tolerance `tol = touch_ulps u s` of 1, the centre's projection is
-/// inside: the earliest such moment is the hit (see [`face_window`]).
+/// distance but not along the track: at a grazing angle its error, `u s k`
+/// over `|n . vel|` (`s` the magnitude of the vertex the plane distance is
+/// measured from, `k` the shape factor; [`SeenPlane::tol`]), moves the
+/// contact point by `|vel| / |n . vel|` times that (fuzz findings F16,
+/// F17 and F38). So when the contact point at `t_p` is outside the
+/// triangle, the face is still touched if, at some moment of the window
+/// where the centre's plane distance is within the touching tolerance
+/// `tol = touch_ulps u s k` of 1, the centre's projection is inside: the
+/// earliest such moment is the hit (see [`face_window`]).
 #[inline]
 #[allow(clippy::too_many_arguments)]
 fn face_contact<T: Real>(
     c: &Candidate<T>,
     rel: &Triangle<T>,
-    n: &Vec3<T>,
-    plane_dist: &T,
+    plane: &SeenPlane<'_, T>,
     base: &Vec3<T>,
     vel: &Vec3<T>,
     touch_ulps: f64,
     wins: &impl Fn(&T) -> bool,
 ) -> Option<Hit<T>> {
     let (zero, one) = (T::zero(), T::one());
+    let n = plane.n;
     let nv = dot(n, vel);
     if !(nv < zero) {
         return None;
     }
-    if !(*plane_dist > one) {
-        return face_entered_touching(c, rel, n, plane_dist, base, vel, nv, touch_ulps, wins);
+    if !(*plane.dist > one) {
+        return face_entered_touching(c, rel, plane, base, vel, nv, touch_ulps, wins);
     }
-    let t = (plane_dist.clone() - &one) / -nv.clone();
+    let t = (plane.dist.clone() - &one) / -nv.clone();
     // A plane reached after the frame is not met in it.
     if !(t <= one) {
         return None;
     }
     let contact = vel * t.clone() - n;
-    let tol = T::c(touch_ulps * T::unit_roundoff()) * scale(&contact, vel);
+    let tol = plane.tol(c, &contact, vel, touch_ulps);
     // The window below can move the contact earlier by `tol / |nv|`: only a
     // plane reached too late even then cannot beat `limit` (judged at `t`
     // itself, `limit` pruned grazing contacts the window would have moved
@@ -881,7 +886,7 @@ fn face_hit<T: Real>(c: &Candidate<T>, n: &Vec3<T>, t: T, contact: Vec3<T>, base
 /// start was ruled out before), approaching it (`nv = n . vel < 0`): the
 /// face contact at which the centre's projection enters the triangle while
 /// the plane distance is still within the touching tolerance
-/// `tol = touch_ulps u s` of 1 (`s` the magnitude at the start, [`scale`]),
+/// `tol = touch_ulps u s k` of 1 ([`SeenPlane::tol`]),
 /// if it does (fuzz finding F29: a sphere `1.5e-14` inside the plane of a
 /// triangle beside it slid into the triangle unseen, its edges'
 /// discriminants, at tangency, rounded negative). The window is
@@ -893,8 +898,7 @@ fn face_hit<T: Real>(c: &Candidate<T>, n: &Vec3<T>, t: T, contact: Vec3<T>, base
 fn face_entered_touching<T: Real>(
     c: &Candidate<T>,
     rel: &Triangle<T>,
-    n: &Vec3<T>,
-    plane_dist: &T,
+    plane: &SeenPlane<'_, T>,
     base: &Vec3<T>,
     vel: &Vec3<T>,
     nv: T,
@@ -902,8 +906,8 @@ fn face_entered_touching<T: Real>(
     wins: &impl Fn(&T) -> bool,
 ) -> Option<Hit<T>> {
     let zero = T::zero();
-    let tol = T::c(touch_ulps * T::unit_roundoff()) * scale(n, vel);
-    let reach = plane_dist.clone() - T::one() + tol;
+    let n = plane.n;
+    let reach = plane.dist.clone() - T::one() + plane.tol(c, n, vel, touch_ulps);
     if !(reach > zero) {
         return None;
     }
@@ -921,10 +925,38 @@ fn face_entered_touching<T: Real>(
     Some(face_hit(c, n, t, contact, base))
 }
 
-/// The magnitude `s` a face contact's rounding scales with: the larger of 1
-/// and the contact point's largest coordinate, plus the velocity's.
-fn scale<T: Real>(contact: &Vec3<T>, vel: &Vec3<T>) -> T {
-    max_abs(contact, T::one()) + max_abs(vel, T::zero())
+/// A candidate's plane as the robust test sees it from the sweep's start:
+/// what [`face_contact`] and [`face_entered_touching`] work from.
+struct SeenPlane<'a, T: Real> {
+    /// The unit normal, turned towards the centre.
+    n: &'a Vec3<T>,
+    /// The centre's distance to the plane.
+    dist: &'a T,
+    /// The vertex (relative to the start) that `dist` was measured from.
+    from: &'a Vec3<T>,
+}
+
+impl<T: Real> SeenPlane<'_, T> {
+    /// The touching tolerance `touch_ulps u s k` of a face contact of `c`
+    /// at `contact` (relative to the start) for a sweep by `vel`: `s`, the
+    /// magnitude the plane distance's rounding scales with, is the largest
+    /// coordinate of `from`, `contact` and 1, plus the velocity's, and `k`
+    /// is `c`'s shape factor. The plane distance is the dot product of the
+    /// unit normal with `from`: rounded by `u |from|`, and off by `|from|`
+    /// times the normal's tilt, a few `u` times `1 / sin` of the largest
+    /// angle ([`Candidate::tilt`]), which `k` bounds without a square root.
+    /// Measured by the contact point alone (`u`, not `u s k`), the window
+    /// was too narrow for the plane's time: in a huge triangle's plane, its
+    /// nearest vertex `1.5e3` away, that time came out `2.4e-5` late, the
+    /// contact point `1.4e-6` beyond a side that the exact one lies
+    /// `1.1e-7` inside, and the face was missed (fuzz finding F38); a flat
+    /// cap (`k = 458`) crossed at `1e-7` of a grazing angle was missed the
+    /// same way.
+    fn tol(&self, c: &Candidate<T>, contact: &Vec3<T>, vel: &Vec3<T>, touch_ulps: f64) -> T {
+        T::c(touch_ulps * T::unit_roundoff())
+            * (max_abs(self.from, max_abs(contact, T::one())) + max_abs(vel, T::zero()))
+            * &c.shape
+    }
 }
 
 /// Where a face contact may lie in time: the plane's time `t`, the

@@ -1178,3 +1178,63 @@ fn overlapping_start_beside_an_edges_end_sweeping_along_it_is_met() {
     let hit = sweep_robust(&c, &base, &vel, &DetectOptions::default(), None).expect("met at the start");
     assert!(hit.t == 0.0 && hit.started_overlapping && hit.feature == Feature::Edge(2), "{hit:?}");
 }
+
+/// F38 (thirty-second session, CI's `sweep_triangle` smoke, `f64`): a unit
+/// sphere gliding `1e-7` radians from parallel onto a face whose nearest
+/// vertex lies `1.5e3` away, reaching the plane `1.1e-7` inside a side
+/// (the centre's projection crosses that side `2.1e-6` in `t` earlier),
+/// got no hit and sank `2e-9` by the end, ten times the bound. The plane
+/// distance, a dot product with that vertex, is rounded by `u` times its
+/// `1.5e3`; the plane's time came out `2.4e-5` late, the contact point
+/// beyond the side, and the face window, its tolerance measured by the
+/// contact point alone (about 1), was far too narrow to reach back. The
+/// window's tolerance now scales with the vertex and with the shape
+/// factor, which bounds the normal's tilt: the second case, found by the
+/// new `robust_sweep_grazing_large_face_f64` property, is a flat cap
+/// (`k = 458`) crossed at `1.1e-7` radians, whose edge hit on the far side
+/// was `5e-8` deep on the old code and this fix's first version.
+#[test]
+fn grazing_sweep_onto_a_large_face_near_a_side_is_a_face_hit() {
+    // (base, vel, triangle, the exact time the projection enters the
+    // triangle, the plane's exact time, the approach speed |n . vel|, the
+    // sweep check's bound 64 u s k).
+    type Case = ([f64; 3], [f64; 3], [[f64; 3]; 3], f64, f64, f64, f64);
+    let cases: [Case; 2] = [
+        (
+            [11592.404934443266, -38.89087847161016, 4275.655605042824],
+            [-0.05880849633277376, -0.010897498375306423, 0.00392148222203078],
+            [
+                [-1640.7511356108866, 5324.560544354344, -12890.566111715652],
+                [-11133.77340957462, -4807.453229263483, 7080.761757940216],
+                [12774.5245451855, -517.1073150908614, 5809.80435377544],
+            ],
+            0.670_898_437_505_402_5,
+            0.670_900_583_887_924_7,
+            5.993_807_43e-9,
+            1.86e-10,
+        ),
+        (
+            [123.58635589821856, 272.17919112152833, 160.18895841251032],
+            [-0.6334508956000522, 6.460000818499017e-8, 0.7737828912967124],
+            [
+                [165.85077345504314, 368.10303619631384, 215.59081694125427],
+                [-165.85077345504314, -368.10303619631384, -215.59081694125427],
+                [-23.759770897364003, -49.897278779369024, -27.662395329798034],
+            ],
+            0.100_000_092_384_196_3,
+            0.100_000_355_757_204_5,
+            1.105_960_304e-7,
+            2.08e-9,
+        ),
+    ];
+    let v = |x: [f64; 3]| vec3::<f64>(x[0], x[1], x[2]);
+    for (base, vel, tri, enters, plane_time, approach, bound) in cases {
+        let c = Candidate::lone(0, Triangle::new(v(tri[0]), v(tri[1]), v(tri[2])));
+        let hit = sweep_robust(&c, &v(base), &v(vel), &DetectOptions::default(), None).expect("a hit");
+        assert_eq!(hit.feature, Feature::Face, "{hit:?}");
+        // Inside the triangle (up to the time's rounding), and touching:
+        // the plane distance at `t` is `1 + approach (plane_time - t)`.
+        assert!(hit.t >= enters - 1e-12, "{hit:?}");
+        assert!((hit.t - plane_time).abs() * approach <= bound, "{hit:?}");
+    }
+}
