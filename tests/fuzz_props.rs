@@ -11,7 +11,9 @@
 //!   1 within the bound), enters nothing before, and agrees with
 //!   `Mpfr<256>` on the same rounded input; `robust_sweep_grazing_face_*`
 //!   and `robust_sweep_grazing_edge_*` aim at two regimes directly (a
-//!   sphere gliding along a plane onto the face near a side, F16 and F17;
+//!   sphere gliding along a plane onto the face near a side, F16 and F17,
+//!   and `robust_sweep_grazing_large_face_*` onto faces of 10 to `3e4`
+//!   radii, whose plane distance is rounded by their far vertices, F38;
 //!   gliding along an edge and entering it within rounding of an end,
 //!   F19), which the random directions of the others rarely reach and the
 //!   fuzzer's decoder reached for the face only;
@@ -27,9 +29,10 @@
 //!   OBJ-like lines, gives an error or a valid mesh, never a panic.
 //!
 //! Ranges: the sweeps keep the relative magnitude `s` (start to triangle,
-//! velocity, in radii) below about 30; the soups are lone triangles and
-//! folds (no slots, no coincident layers) and the displacements stay below
-//! 0.02 radii per pass. The fuzz targets cover the whole documented range;
+//! velocity, in radii) below about 30 (the large faces' up to about
+//! `1e5`); the soups are lone triangles and folds (no slots, no
+//! coincident layers) and the displacements stay below 0.02 radii per
+//! pass. The fuzz targets cover the whole documented range;
 //! the regimes left out here are those of the first campaign's findings
 //! (docs/fuzzing.md, "Notes per finding": F1, vertex and edge entry times
 //! losing accuracy like `u s^2`, F2, slides leaving the frame's candidate
