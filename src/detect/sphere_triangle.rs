@@ -378,7 +378,7 @@ pub(crate) fn sweep_robust_with_speed<T: Real>(
 
     // Face interior: the plane reached with the contact point inside.
     let face_hit = || {
-        let plane = SeenPlane { n: normal.as_ref()?, dist: &plane_dist, from: p[nearest] };
+        let plane = SeenPlane { n: normal.as_ref()?, dist: &plane_dist, from: p[nearest], speed };
         face_contact(c, &rel, &plane, base, vel, opts.touch_ulps, &wins)
     };
     // Clear of the plane by more than the margin, the body cannot be
@@ -738,14 +738,14 @@ fn edge_beyond_end<T: Real>(
 
 /// The robust test's face contact: the unit sphere at the origin (the
 /// sweep's start, `rel` the triangle relative to it) moving by `vel`
-/// reaches the plane at distance `plane_dist` along `-n` (`n` turned
-/// towards the centre) with the contact point inside the triangle, at a
-/// time that `wins`. (A function, not a closure: the robust test tries it
-/// in two places, before the closest point for a body clear of the plane
-/// and after it otherwise, and a closure's captures cost more than its
-/// arguments.)
+/// reaches `plane` with the contact point inside the triangle, at a time
+/// that `wins`. (A function, not a closure: the robust test tries it in
+/// two places, before the closest point for a body clear of the plane and
+/// after it otherwise, and a closure's captures cost more than its
+/// arguments. Kept out of line: inlined into the closure that calls it,
+/// it cost the terrain replay's frame move 0.7% more instructions.)
 ///
-/// The plane's time `t_p = (plane_dist - 1) / -(n . vel)` is accurate in
+/// The plane's time `t_p = (plane.dist - 1) / -(n . vel)` is accurate in
 /// distance but not along the track: at a grazing angle its error, `u s k`
 /// over `|n . vel|` (`s` the magnitude of the vertex the plane distance is
 /// measured from, `k` the shape factor; [`SeenPlane::tol`]), moves the
@@ -755,8 +755,7 @@ fn edge_beyond_end<T: Real>(
 /// where the centre's plane distance is within the touching tolerance
 /// `tol = touch_ulps u s k` of 1, the centre's projection is inside: the
 /// earliest such moment is the hit (see [`face_window`]).
-#[inline]
-#[allow(clippy::too_many_arguments)]
+#[inline(never)]
 fn face_contact<T: Real>(
     c: &Candidate<T>,
     rel: &Triangle<T>,
@@ -781,7 +780,7 @@ fn face_contact<T: Real>(
         return None;
     }
     let contact = vel * t.clone() - n;
-    let tol = plane.tol(c, &contact, vel, touch_ulps);
+    let tol = plane.tol(c, touch_ulps);
     // The window below can move the contact earlier by `tol / |nv|`: only a
     // plane reached too late even then cannot beat `limit` (judged at `t`
     // itself, `limit` pruned grazing contacts the window would have moved
@@ -907,7 +906,7 @@ fn face_entered_touching<T: Real>(
 ) -> Option<Hit<T>> {
     let zero = T::zero();
     let n = plane.n;
-    let reach = plane.dist.clone() - T::one() + plane.tol(c, n, vel, touch_ulps);
+    let reach = plane.dist.clone() - T::one() + plane.tol(c, touch_ulps);
     if !(reach > zero) {
         return None;
     }
@@ -930,32 +929,34 @@ fn face_entered_touching<T: Real>(
 struct SeenPlane<'a, T: Real> {
     /// The unit normal, turned towards the centre.
     n: &'a Vec3<T>,
-    /// The centre's distance to the plane.
+    /// The centre's distance to the plane, from the vertex nearest it.
     dist: &'a T,
-    /// The vertex (relative to the start) that `dist` was measured from.
+    /// That vertex, relative to the start.
     from: &'a Vec3<T>,
+    /// The sweep's speed `|vel|`.
+    speed: &'a T,
 }
 
 impl<T: Real> SeenPlane<'_, T> {
-    /// The touching tolerance `touch_ulps u s k` of a face contact of `c`
-    /// at `contact` (relative to the start) for a sweep by `vel`: `s`, the
-    /// magnitude the plane distance's rounding scales with, is the largest
-    /// coordinate of `from`, `contact` and 1, plus the velocity's, and `k`
-    /// is `c`'s shape factor. The plane distance is the dot product of the
-    /// unit normal with `from`: rounded by `u |from|`, and off by `|from|`
-    /// times the normal's tilt, a few `u` times `1 / sin` of the largest
-    /// angle ([`Candidate::tilt`]), which `k` bounds without a square root.
-    /// Measured by the contact point alone (`u`, not `u s k`), the window
-    /// was too narrow for the plane's time: in a huge triangle's plane, its
-    /// nearest vertex `1.5e3` away, that time came out `2.4e-5` late, the
-    /// contact point `1.4e-6` beyond a side that the exact one lies
-    /// `1.1e-7` inside, and the face was missed (fuzz finding F38); a flat
-    /// cap (`k = 458`) crossed at `1e-7` of a grazing angle was missed the
-    /// same way.
-    fn tol(&self, c: &Candidate<T>, contact: &Vec3<T>, vel: &Vec3<T>, touch_ulps: f64) -> T {
-        T::c(touch_ulps * T::unit_roundoff())
-            * (max_abs(self.from, max_abs(contact, T::one())) + max_abs(vel, T::zero()))
-            * &c.shape
+    /// The touching tolerance of `dist` for candidate `c`,
+    /// `touch_ulps u s k`: `s` is the largest coordinate of `from` and 1,
+    /// plus the speed, and `k` the candidate's shape factor. The plane
+    /// distance is the unit normal's dot product with the vertex: rounded
+    /// by `u` times its size, and off by that size times the normal's
+    /// tilt, a few `u` times `1 / sin` of the largest angle
+    /// ([`Candidate::tilt`]), which `k` bounds without a square root; the
+    /// speed covers the contact point's rounding (`|vel t - n| <= 1 +
+    /// |vel|`). Measured by the contact point alone (`u` times about 1),
+    /// the window was too narrow for the plane's time: in a huge
+    /// triangle's plane, its nearest vertex `1.5e3` away, that time came
+    /// out `2.4e-5` late, the contact point `1.4e-6` beyond a side that the
+    /// exact one lies `1.1e-7` inside, and the face was missed (fuzz
+    /// finding F38); a flat cap (`k = 458`) crossed at `1e-7` of a grazing
+    /// angle was missed the same way until `k` was added. At most `44 u s'
+    /// k` for the sweep checks' magnitude `s'` (`docs/fuzzing.md`), within
+    /// their bound of `64 u s' k`.
+    fn tol(&self, c: &Candidate<T>, touch_ulps: f64) -> T {
+        T::c(touch_ulps * T::unit_roundoff()) * (max_abs(self.from, T::one()) + self.speed) * &c.shape
     }
 }
 
