@@ -14,8 +14,8 @@
 use rug::Float;
 use std::cmp::Ordering;
 use sweepslide::geom::{
-    Ellipsoid, Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, dot, max_abs, norm, norm_squared,
-    normalize, normalize_near_unit, vec3,
+    Ellipsoid, Feature, Plane, Triangle, Vec3, closest_point_on_triangle, cross, cross_of_edges, dot, max_abs, norm,
+    norm_squared, normalize, normalize_near_unit, vec3,
 };
 use sweepslide::real::with_precision;
 use sweepslide::{Mpfr, MpfrDyn, Real};
@@ -395,6 +395,48 @@ fn check_vec_helpers<T: Real>() {
     assert!(normalize_near_unit(&vec3::<T>(f64::INFINITY, 0.0, 0.0)).is_none());
 }
 
+/// `cross_of_edges` on flat caps (a vertex near the middle of the long
+/// side, heights `1e-7` to `1e-2` of the length, full significands from
+/// quotients) against the exact product of the exact edges at 4096 bits:
+/// each component within `u` of itself plus `28 u^2 |y - x| |z - y|`, the
+/// documented bound. The plain product of the rounded edges breaks that
+/// bound on most of these caps, so the check can fail.
+fn check_cross_of_edges<T: Real>() {
+    let u = T::unit_roundoff();
+    let mut rng = Rng(0x5eed_00ca);
+    let mut plain_outside = 0;
+    for _ in 0..400 {
+        let mut full = |e| r::<T>(rng.wide(e)) / r::<T>(rng.wide(1));
+        let x = Vec3::new(full(8), full(8), full(8));
+        let dir = Vec3::new(full(0), full(0), full(0));
+        let side = Vec3::new(full(0), full(0), full(0));
+        let long = r::<T>(1e3) * full(2).abs();
+        let along = r::<T>(0.05 + 0.9 * rng.below(1000) as f64 / 1000.0);
+        let height = r::<T>((-(rng.below(18) as f64) - 6.0).exp2() * 10.0) * &long;
+        let y = x.clone() + (dir.clone() * (long.clone() * along)) + cross(&dir, &side) * height;
+        let z = x.clone() + dir * long;
+        let got = cross_of_edges(&x, &y, &z);
+        let plain = cross(&(y.clone() - &x), &(z.clone() - &y));
+        let big = |v: &Vec3<T>| [0, 1, 2].map(|i| Float::with_val(4096, v[i].to_rug()));
+        let (xe, ye, ze) = (big(&x), big(&y), big(&z));
+        let e = [0, 1, 2].map(|i| Float::with_val(4096, &ye[i] - &xe[i]));
+        let f = [0, 1, 2].map(|i| Float::with_val(4096, &ze[i] - &ye[i]));
+        let product = |a: &Float, b: &Float| Float::with_val(4096, a * b);
+        let exact = [(1, 2), (2, 0), (0, 1)].map(|(j, k)| product(&e[j], &f[k]) - product(&e[k], &f[j]));
+        let length = |v: &[Float; 3]| (product(&v[0], &v[0]) + product(&v[1], &v[1]) + product(&v[2], &v[2])).sqrt();
+        let lever = (length(&e) * length(&f)).to_f64();
+        for i in 0..3 {
+            let bound = u * exact[i].to_f64().abs() + 28.0 * u * u * lever;
+            let err = Float::with_val(4096, got[i].to_rug() - &exact[i]).to_f64().abs();
+            assert!(err <= bound, "{}: component {i} off by {err:e}, bound {bound:e}", T::name());
+            if Float::with_val(4096, plain[i].to_rug() - &exact[i]).to_f64().abs() > bound {
+                plain_outside += 1;
+            }
+        }
+    }
+    assert!(plain_outside > 200, "{}: the plain product broke the bound only {plain_outside} times", T::name());
+}
+
 fn check_plane<T: Real>() {
     // Counter-clockwise seen from +z: normal +z, plane z = 1.
     let tri = Triangle::new(vec3::<T>(0.0, 0.0, 1.0), vec3::<T>(2.0, 0.0, 1.0), vec3::<T>(0.0, 2.0, 1.0));
@@ -507,6 +549,10 @@ macro_rules! backend_suite {
             #[test]
             fn vec3_helpers() {
                 check_vec_helpers::<T>();
+            }
+            #[test]
+            fn cross_of_exact_edges_within_its_bound() {
+                check_cross_of_edges::<T>();
             }
             #[test]
             fn plane_from_triangle_and_signed_distance() {
@@ -931,6 +977,7 @@ fn geometry_trace<T: Real>(seed: u64) -> Vec<u64> {
         }
         let (q, feature) = closest_point_on_triangle(&p, &tri);
         out.extend(q.iter().map(|x| x.to_f64().to_bits()));
+        out.extend(cross_of_edges(&tri.a, &tri.b, &tri.c).iter().map(|x| x.to_f64().to_bits()));
         out.push(match feature {
             Feature::Face => 0,
             Feature::Edge(i) => 1 + u64::from(i),

@@ -358,9 +358,11 @@ macro_rules! both {
 }
 
 /// A candidate's normal is the front normal `(b - a) x (c - a)` whichever
-/// edge is the longest (it is computed from the other two), and its tilt
+/// edge is the longest (it is computed from the other two). Its angle
 /// factor is `1 / sin` of the largest angle: exactly 1 for a right
-/// triangle, `2 / sqrt(3)` for an equilateral one, large for a flat cap.
+/// triangle, `2 / sqrt(3)` for an equilateral one, large for a flat cap;
+/// its tilt factor is that, or about 1 where the normal is the exact
+/// edges' product (shape factor beyond 4).
 fn candidate_normal_and_tilt<T: Real>() {
     let v = |x: [f64; 3]| vec3::<T>(x[0], x[1], x[2]);
     // The tilt is computed in `f64`.
@@ -381,8 +383,20 @@ fn candidate_normal_and_tilt<T: Real>() {
     assert_eq!(tilt(right), 1.0);
     let equilateral = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 3f64.sqrt(), 0.0]];
     assert!((tilt(equilateral) - 2.0 / 3f64.sqrt()).abs() < 16.0 * u, "{}", tilt(equilateral));
-    // 1 / sin(2 atan 8) = (1 + 64) / 16.
-    assert!((tilt(cap) - 65.0 / 16.0).abs() < 16.0 * u * 4.0, "{}", tilt(cap));
+    // At the shape factor `ACCURATE_SHAPE` (4) the product of the rounded
+    // edges is kept, its tilt factor `1 / sin` of the apex angle
+    // `2 atan 2`, `(1 + 4) / 4`.
+    let blunt = [[-2.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    assert!(!Candidate::lone(0, Triangle::new(v(blunt[0]), v(blunt[1]), v(blunt[2]))).accurate_normal);
+    assert!((tilt(blunt) - 5.0 / 4.0).abs() < 16.0 * u * 2.0, "{}", tilt(blunt));
+    // Beyond it (the cap's shape factor is 16), the exact edges' product:
+    // its tilt factor is `1 + 32 u g`, `g = 1 / sin(2 atan 8) = (1 + 64) / 16`.
+    assert!(Candidate::lone(0, Triangle::new(v(cap[0]), v(cap[1]), v(cap[2]))).accurate_normal);
+    let cap_tilt = 1.0 + 32.0 * T::unit_roundoff() * 65.0 / 16.0;
+    assert!((tilt(cap) - cap_tilt).abs() < 16.0 * u, "{}", tilt(cap));
+    let angle_factor =
+        |tri: [[f64; 3]; 3]| Candidate::lone(0, Triangle::new(v(tri[0]), v(tri[1]), v(tri[2]))).angle_factor();
+    assert!((angle_factor(cap) - 65.0 / 16.0).abs() < 16.0 * u * 4.0, "{}", angle_factor(cap));
     // Degenerate in this precision: no normal, no finite tilt.
     let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
     assert!(!tilt(flat).is_finite());
@@ -394,7 +408,8 @@ fn candidate_normal_and_tilt<T: Real>() {
     let big: &[f64] = if T::bits() > 24 { &[1e60, 1e-60, 1e100] } else { &[1e15] };
     for &scale in big {
         let cap = cap.map(|p| p.map(|x| x * scale));
-        assert!((tilt(cap) - 65.0 / 16.0).abs() < 16.0 * u * 4.0, "scale {scale:e}: {}", tilt(cap));
+        assert!((tilt(cap) - cap_tilt).abs() < 16.0 * u, "scale {scale:e}: {}", tilt(cap));
+        assert!((angle_factor(cap) - 65.0 / 16.0).abs() < 16.0 * u * 4.0, "scale {scale:e}: {}", angle_factor(cap));
     }
 }
 

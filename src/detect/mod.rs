@@ -17,7 +17,9 @@ pub use sphere_triangle::{
 use sphere_triangle::{SweptBox, sweep_robust_with_speed};
 
 use crate::error::not_negative;
-use crate::geom::{Ellipsoid, Feature, Triangle, Vec3, cross, dot, is_finite, max_abs, norm, norm_squared};
+use crate::geom::{
+    Ellipsoid, Feature, Triangle, Vec3, cross, cross_of_edges, dot, is_finite, max_abs, norm, norm_squared,
+};
 use crate::world::{ActiveFeatures, INTERNAL_EDGE_DEGREES, World};
 use crate::{Error, Real};
 use smallvec::SmallVec;
@@ -163,6 +165,11 @@ pub struct Candidate<T: Real> {
     /// about 1 for any triangle but a flat cap (an obtuse sliver), whereas a
     /// pair with the longest edge of a needle would give its shape factor.
     pub normal: Option<Vec3<T>>,
+    /// Whether [`Candidate::normal`] is the product of the exact edges
+    /// ([`cross_of_edges`]), taken for a triangle whose shape factor exceeds
+    /// [`ACCURATE_SHAPE`]: its tilt is then a few `u` whatever the
+    /// triangle's angles ([`Candidate::tilt`]).
+    pub accurate_normal: bool,
     /// Lower corner of its box.
     pub lo: Vec3<T>,
     /// Upper corner of its box.
@@ -190,6 +197,20 @@ pub struct Candidate<T: Real> {
     pub long_lever: bool,
 }
 
+/// `|v|`, or where the squares overflow (a triangle's doubled area beyond
+/// about `1.8e19` in `f32`, `1.3e154` in `f64`, sides beyond about `4e9`
+/// and `1e77` radii) the norm of `v` scaled by its largest coordinate.
+/// Left infinite, a large triangle had no normal and no face, and a sweep
+/// onto it found nothing (a review).
+fn norm_unscaled<T: Real>(v: &Vec3<T>) -> T {
+    let n = norm(v);
+    if n.is_finite() || !is_finite(v) {
+        return n;
+    }
+    let m = max_abs(v, T::zero());
+    norm(&v.map(|x| x / &m)) * m
+}
+
 impl<T: Real> Candidate<T> {
     /// A candidate from a triangle of a mesh.
     #[must_use]
@@ -212,22 +233,27 @@ impl<T: Real> Candidate<T> {
         let [l0, l1, l2] = edge_sq.clone();
         // The two edges after the longest, in cyclic order: their cross
         // product is `(b - a) x (c - a)` in exact arithmetic.
-        let (raw, longest) = if l0 >= l1 && l0 >= l2 {
-            (cross(&edges[1], &edges[2]), l0)
+        // (`(x, y, z)` the vertices with `y - x` and `z - y` those edges.)
+        let (mut raw, longest, [x, y, z]) = if l0 >= l1 && l0 >= l2 {
+            (cross(&edges[1], &edges[2]), l0, [b, c, a])
         } else if l1 >= l2 {
-            (cross(&edges[2], &edges[0]), l1)
+            (cross(&edges[2], &edges[0]), l1, [c, a, b])
         } else {
-            (cross(&edges[0], &edges[1]), l2)
+            (cross(&edges[0], &edges[1]), l2, [a, b, c])
         };
-        let mut area2 = norm(&raw);
-        if !area2.is_finite() && is_finite(&raw) {
-            // The squares overflowed (sides beyond about `4e9` radii in
-            // `f32`, `1e77` in `f64`): the norm of the vector scaled by its
-            // largest coordinate. Left infinite, the triangle had no normal
-            // and no face, and a sweep onto it found nothing (a review).
-            let m = max_abs(&raw, T::zero());
-            area2 = norm(&raw.map(|x| x / &m)) * m;
-        }
+        let mut area2 = norm_unscaled(&raw);
+        // A flat cap's product of rounded edges is tilted by a few `u g`
+        // (`Candidate::tilt`); beyond the shape factor `ACCURATE_SHAPE`
+        // (`g` is at most `k`) the product is taken from the exact edges.
+        let accurate = area2 > T::zero() && area2.is_finite() && longest.clone() > T::c(ACCURATE_SHAPE) * &area2 && {
+            let exact = cross_of_edges(x, y, z);
+            let exact_area2 = norm_unscaled(&exact);
+            let usable = exact_area2 > T::zero() && exact_area2.is_finite();
+            if usable {
+                (raw, area2) = (exact, exact_area2);
+            }
+            usable
+        };
         let has_area = area2 > T::zero() && area2.is_finite();
         // As `normalize(&raw)`, without taking the norm twice. (A product by
         // one reciprocal would save two quotients, but its extra `2u` per
@@ -236,21 +262,31 @@ impl<T: Real> Candidate<T> {
         let normal = has_area.then(|| raw.map(|x| x / &area2));
         let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
         let long_lever = shape > T::c(4.0) || edge_sq.iter().all(|l| *l < T::one());
-        Candidate { index, triangle, active, normal, lo, hi, edges, edge_sq, shape, long_lever }
+        Candidate {
+            index,
+            triangle,
+            active,
+            normal,
+            accurate_normal: accurate,
+            lo,
+            hi,
+            edges,
+            edge_sq,
+            shape,
+            long_lever,
+        }
     }
 
-    /// The tilt factor of [`Candidate::normal`]: `|e_i| |e_j| / |e_i x e_j|`
-    /// for the two shorter edges, `1 / sin` of the largest angle (1 for a
-    /// right triangle, `2 / sqrt(3)` for an equilateral one, large only
-    /// for a flat cap; infinite when degenerate), in `f64`: the unit
-    /// normal's direction is off by a few `u` times this, and so is a
-    /// distance to the plane per unit of lever arm. Where the product of
-    /// the squared sides leaves `f64`'s range (sides beyond about `1e51`
-    /// or below `1e-51` radii) the two shorter sides' lengths are
-    /// multiplied instead (a review, session 29: the product overflowed,
-    /// and a flat cap `1e60` radii wide lost its tilt's padding).
+    /// `1 / sin` of the largest angle, `|e_i| |e_j| / |e_i x e_j|` for the
+    /// two shorter edges (1 for a right triangle, `2 / sqrt(3)` for an
+    /// equilateral one, large only for a flat cap; infinite when
+    /// degenerate), in `f64`. Where the product of the squared sides
+    /// leaves `f64`'s range (sides beyond about `1e51` or below `1e-51`
+    /// radii) the two shorter sides' lengths are multiplied instead (a
+    /// review, session 29: the product overflowed, and a flat cap `1e60`
+    /// radii wide lost its tilt's padding).
     #[must_use]
-    pub fn tilt(&self) -> f64 {
+    pub fn angle_factor(&self) -> f64 {
         let [l0, l1, l2] = [0, 1, 2].map(|i| self.edge_sq[i].to_f64());
         let longest = l0.max(l1).max(l2);
         let shape = self.shape.to_f64();
@@ -267,6 +303,19 @@ impl<T: Real> Candidate<T> {
             l[0].sqrt() * l[1].sqrt()
         };
         sides * shape / longest
+    }
+
+    /// The tilt factor of [`Candidate::normal`]: its direction is off by a
+    /// few `u` times this, and so is a distance to the plane per unit of
+    /// lever arm. For the product of the rounded edges it is the angle
+    /// factor `g` ([`Candidate::angle_factor`]); for the exact edges'
+    /// product ([`Candidate::accurate_normal`]) `1 + 32 u g` (or `g` where
+    /// smaller): about 1 for a flat cap until `g` nears `1 / u`. Infinite
+    /// when degenerate.
+    #[must_use]
+    pub fn tilt(&self) -> f64 {
+        let g = self.angle_factor();
+        if self.accurate_normal { g.min(1.0 + ACCURATE_TILT_ULPS * T::unit_roundoff() * g) } else { g }
     }
 
     /// The squared distance from `p` to this candidate's box (zero inside):
@@ -286,6 +335,19 @@ impl<T: Real> Candidate<T> {
         Self::new(index, triangle, ActiveFeatures::ALL)
     }
 }
+
+/// The shape factor ([`Candidate::shape`]) beyond which a candidate's
+/// normal is the product of its exact edges ([`cross_of_edges`]): the tilt
+/// factor `g` never exceeds the shape factor, so below it the plain
+/// product's tilt is at most a few `u` times 4, and the terrain's
+/// triangles (shape factor about 2) never pay for the exact one.
+pub const ACCURATE_SHAPE: f64 = 4.0;
+
+/// The exact edges' product is off in direction by at most about
+/// `3u + 50 u^2 g` ([`cross_of_edges`]), `u` times `3 (1 + 17 u g)`,
+/// against a few `u g` for the rounded edges': its tilt factor is taken
+/// as `1 + ACCURATE_TILT_ULPS u g` (or `g` where that is smaller).
+const ACCURATE_TILT_ULPS: f64 = 32.0;
 
 /// How far beyond the radii a gather reaches, in radii (eSpace units):
 /// room for paddings and small push-outs, far above any rounding of the

@@ -15,5 +15,6 @@ pub use plane::Plane;
 pub use triangle::{Feature, Triangle, closest_point_on_triangle};
 pub(crate) use triangle::{closest_point_on_sides, unit_scale};
 pub use vec::{
-    Vec3, cross, dot, from_f64, is_finite, max_abs, norm, norm_squared, normalize, normalize_near_unit, to_f64, vec3,
+    Vec3, cross, cross_of_edges, dot, from_f64, is_finite, max_abs, norm, norm_squared, normalize, normalize_near_unit,
+    to_f64, vec3,
 };

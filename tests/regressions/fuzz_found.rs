@@ -414,8 +414,8 @@ fn sphere_in_a_corner_beside_a_huge_sliver_stays_out_of_it() {
     let worst = worst_penetration::<f64>(&soup, [1.0; 3], [3.0; 3], &frames);
     assert!(worst <= 0.0, "penetration {worst:e}");
     let v = |p: [f64; 3]| vec3::<f64>(p[0], p[1], p[2]);
-    let tilt = Candidate::lone(0, Triangle::new(v(sliver[0]), v(sliver[1]), v(sliver[2]))).tilt();
-    assert!(tilt > 1e3, "the case needs a flat cap: tilt factor {tilt:e}");
+    let g = Candidate::lone(0, Triangle::new(v(sliver[0]), v(sliver[1]), v(sliver[2]))).angle_factor();
+    assert!(g > 1e3, "the case needs a flat cap: 1 / sin of its largest angle {g:e}");
 }
 
 /// F15 (seventh session, `move_robust`, `f64`): a unit sphere sliding on a

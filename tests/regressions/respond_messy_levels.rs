@@ -326,3 +326,55 @@ fn a_sphere_pushed_onto_a_long_flat_cap_stays_out_f64() {
     let velocity = [0.145_026_275_646_800_1, -0.437_838_518_269_744_2, -0.383_750_975_622_698_94];
     walk::<f64>(&mesh, [1.0; 3], start, velocity, None, 20);
 }
+
+/// Bodies pushed onto lone flat caps in `f32` (from a directed probe,
+/// thirty-third session: caps `1e2` to `3e3` long and `1e-3` to 10 high,
+/// turned at random, spheres and ellipsoids pushed at them; 20 of 12,000
+/// runs ended inside with the old code, none now). The cap's unit normal,
+/// the product of two rounded edges, was tilted by a few `u` times `1 /
+/// sin` of its largest angle (`3e3` to `2.4e5` here), up to 0.05 radians,
+/// and the distance to the face, taken hundreds of radii from the nearest
+/// vertex, was off by up to radii; the padding, capped at `0.01`, could not
+/// cover it: these three ended 0.56, 0.75 and 0.019 radii inside. The
+/// normal of a triangle whose shape factor exceeds 4 is now the product of
+/// the exact edges (`geom::cross_of_edges`), tilted by a few `u`.
+#[test]
+fn bodies_pushed_onto_lone_flat_caps_stay_out_f32() {
+    type Case = ([[f64; 3]; 3], [f64; 3], [f64; 3], [f64; 3]);
+    let cases: [Case; 3] = [
+        (
+            [
+                [785.111_553_830_249_1, -583.009_751_886_996_1, -976.450_886_650_580_1],
+                [-788.064_146_934_360_6, 587.155_760_820_46, 972.993_096_476_992_8],
+                [516.629_926_081_174_6, -383.305_333_946_376_2, -643.756_514_782_941_7],
+            ],
+            [1.0; 3],
+            [-188.526_456_469_824_27, 138.507_166_200_904_1, 226.770_808_387_334_9],
+            [1.329_624_803_841_695_1, 0.835_488_296_488_375_6, 0.576_417_586_939_888_2],
+        ),
+        (
+            [
+                [-794.987_603_207_645_7, 546.337_349_808_747_1, 728.308_068_437_876],
+                [787.073_870_591_311, -538.271_896_291_337_7, -720.218_904_662_321_6],
+                [-203.688_514_228_630_4, 140.960_489_829_352_4, 186.914_673_507_104],
+            ],
+            [1.441_422_420_386_954_8, 1.089_718_857_756_820_6, 1.152_133_029_869_812_5],
+            [516.697_709_436_555_2, -349.970_750_249_225_03, -473.589_766_328_888_7],
+            [-0.312_615_269_218_149_9, -1.693_304_653_189_022_3, 0.905_735_053_196_449_2],
+        ),
+        (
+            [
+                [-543.007_900_192_724_5, -619.829_387_114_003_9, -1_159.871_727_958_991_4],
+                [546.569_490_962_546_1, 615.662_349_055_712_1, 1_158.546_146_657_523_9],
+                [-374.643_549_422_625_03, -428.819_299_917_638_26, -801.325_916_694_077_3],
+            ],
+            [1.0; 3],
+            [-14.164_726_373_446_287, -18.216_316_772_156_73, -33.732_376_629_870_24],
+            [0.041_024_807_404_356_475, -0.188_151_683_729_523_68, -0.015_538_688_155_530_112],
+        ),
+    ];
+    for (vertices, radii, start, velocity) in cases {
+        let mesh = TriangleMesh::new(vertices.to_vec(), vec![[0, 1, 2]]).unwrap();
+        walk::<f32>(&mesh, radii, start, velocity, None, 12);
+    }
+}
