@@ -259,11 +259,11 @@ fn a_push_into_a_doubled_wall_stops_square_f64() {
     stops_square_at_a_doubled_wall::<f64>(0.0, 4e5);
 }
 
-/// A 20 x 20 floor at `y = 0` welded along `x = 0`, with, where `sliver`,
-/// a crack-filler lying in it along that seam: a flat cap from `(0, 0,
-/// -10)` to `(0, 0, 10)` whose third vertex is `1e-5` off the seam's
-/// middle, over the right half.
-fn sliver_floor(sliver: bool) -> TriangleMesh {
+/// A 20 x 20 floor at `y = 0` welded along `x = 0`, with, given a
+/// `sliver` width, a crack-filler lying in it along that seam: a flat cap
+/// from `(0, 0, -10)` to `(0, 0, 10)` whose third vertex is that far off
+/// the seam's middle, over the right half.
+fn sliver_floor(sliver: Option<f64>) -> TriangleMesh {
     let mut vertices = vec![
         [-10.0, 0.0, -10.0],
         [-10.0, 0.0, 10.0],
@@ -273,8 +273,8 @@ fn sliver_floor(sliver: bool) -> TriangleMesh {
         [10.0, 0.0, -10.0],
     ];
     let mut triangles = vec![[0, 1, 2], [0, 2, 3], [3, 2, 4], [3, 4, 5]];
-    if sliver {
-        vertices.push([1e-5, 0.0, 0.0]);
+    if let Some(width) = sliver {
+        vertices.push([width, 0.0, 0.0]);
         triangles.push([3, 2, 6]);
     }
     TriangleMesh::new(vertices, triangles).unwrap()
@@ -282,26 +282,69 @@ fn sliver_floor(sliver: bool) -> TriangleMesh {
 
 /// Slow walks over a sliver lying in a floor ([`sliver_floor`]) in `f32` at
 /// the origin, gravity as a second pass: a unit sphere and the character of
-/// `examples/character.rs`. The sliver's normal is ill-conditioned (tilt
-/// factor about `1e6`), so its padding is the cap `0.01`, and its edges,
-/// which lie in the floor, had that padding too: the body was held `0.01`
-/// off them and a walk of `0.002` a frame stopped at the seam, 0.38 to 0.80
-/// of its path (the character 0.45; since R30a bobbing in place). An edge's
-/// distance does not use the normal, and it now has the plain padding
-/// (R31a). The floor without the sliver is the control.
+/// `examples/character.rs`. The sliver's normal, the product of rounded
+/// edges, was ill-conditioned (angle factor about `1e6`), so its padding
+/// was the cap `0.01`, and its edges, which lie in the floor, had that
+/// padding too: the body was held `0.01` off them and a walk of `0.002` a
+/// frame stopped at the seam, 0.38 to 0.80 of its path (the character
+/// 0.45; since R30a bobbing in place). An edge's distance does not use the
+/// normal, and it has had the plain padding since R31a; since R33a the
+/// normal is the exact edges' product and the face's padding is the plain
+/// one too. The floor without the sliver is the control.
 #[test]
 fn slow_walks_over_a_sliver_lying_in_a_floor_go_the_whole_way_in_f32() {
     for (radii, height, speed) in [([1.0; 3], 1.0, 0.002), ([1.0; 3], 1.0, 0.001), ([0.4, 0.9, 0.4], 0.9, 0.002)] {
         let frames = (1.0 / speed) as usize;
         let start = [-0.5, height, 0.3];
-        let run = |sliver| {
-            walk::<f32>(&sliver_floor(sliver), radii, start, [speed, 0.0, 0.0], Some([0.0, -0.05, 0.0]), frames)[0]
-                - start[0]
+        let run = |sliver: bool| {
+            walk::<f32>(
+                &sliver_floor(sliver.then_some(1e-5)),
+                radii,
+                start,
+                [speed, 0.0, 0.0],
+                Some([0.0, -0.05, 0.0]),
+                frames,
+            )[0] - start[0]
         };
         let ideal = speed * frames as f64;
         let (welded, seamed) = (run(false), run(true));
         assert!(welded > 0.95 * ideal, "{radii:?} at {speed}: the control walked {welded} of {ideal}");
         assert!(seamed > 0.95 * ideal, "{radii:?} at {speed}: walked {seamed} of {ideal} (welded: {welded})");
+    }
+}
+
+/// The walks of [`slow_walks_over_a_sliver_lying_in_a_floor_go_the_whole_way_in_f32`]
+/// keep the control's height. Between R31a and R33a the sliver's face had
+/// the capped padding `0.01` (its normal's tilt factor about `1e6`), and a
+/// body whose centre passed over it hopped by up to `0.01` radii and fell
+/// back (`0.0099` for the unit sphere, `0.0089` for the character, `0.0071`
+/// over a sliver `1e-3` wide). Its normal is now the exact edges' product,
+/// its face's padding the plain one.
+#[test]
+fn slow_walks_over_a_sliver_lying_in_a_floor_keep_their_height_in_f32() {
+    for (radii, height, width) in [([1.0; 3], 1.0, 1e-5), ([0.4, 0.9, 0.4], 0.9, 1e-5), ([1.0; 3], 1.0, 1e-3)] {
+        let heights = |mesh: &TriangleMesh| {
+            let world = World::<f32>::new(Arc::new(mesh.clone())).unwrap();
+            let body = Ellipsoid::<f32>::new(radii).unwrap();
+            let options = MoveOptions::new(Response::Robust);
+            let (velocity, gravity): (Vec3<f32>, Vec3<f32>) = (vec3(0.002, 0.0, 0.0), vec3(0.0, -0.05, 0.0));
+            let mut p: Vec3<f32> = vec3(-0.5, height, 0.3);
+            let mut range = (f32::INFINITY, f32::NEG_INFINITY);
+            for frame in 0..500 {
+                p = move_body(&world, &body, &p, &velocity, Some(&gravity), &options).unwrap().position;
+                if frame >= 20 {
+                    range = (range.0.min(p[1]), range.1.max(p[1]));
+                }
+            }
+            assert!(p[0] > 0.45, "{radii:?}: walked to {}", p[0]);
+            range
+        };
+        let (welded, seamed) = (heights(&sliver_floor(None)), heights(&sliver_floor(Some(width))));
+        assert_eq!(welded.0, welded.1, "{radii:?}: the control's height changed");
+        assert_eq!(
+            seamed, welded,
+            "{radii:?} over a sliver {width:e} wide: heights {seamed:?}, the control {welded:?}"
+        );
     }
 }
 
