@@ -197,12 +197,25 @@ pub struct Candidate<T: Real> {
     pub long_lever: bool,
 }
 
+/// The doubled area below which a candidate keeps the product of its
+/// rounded edges: `2^4 / u^2` times the smallest normal value. Below it the
+/// exact product's fused multiply-adds can round into gradual underflow,
+/// and its error is no longer `u^2` of the edges' product (a review: in
+/// `f32`, caps `1e-15` radii across were tilted `6,500` times more than
+/// the exact product's tilt factor says). `2^-74`, about `5e-23`, in
+/// `f32`; `2^-912` in `f64`; no floor for MPFR.
+fn exact_product_floor<T: Real>() -> f64 {
+    let u = T::unit_roundoff();
+    16.0 * T::min_positive_normal() / (u * u)
+}
+
 /// `|v|`, or where the squares overflow (a triangle's doubled area beyond
 /// about `1.8e19` in `f32`, `1.3e154` in `f64`, sides beyond about `4e9`
 /// and `1e77` radii) the norm of `v` scaled by its largest coordinate.
 /// Left infinite, a large triangle had no normal and no face, and a sweep
 /// onto it found nothing (a review).
-fn norm_unscaled<T: Real>(v: &Vec3<T>) -> T {
+#[inline(always)]
+fn norm_without_overflow<T: Real>(v: &Vec3<T>) -> T {
     let n = norm(v);
     if n.is_finite() || !is_finite(v) {
         return n;
@@ -216,7 +229,40 @@ impl<T: Real> Candidate<T> {
     #[must_use]
     pub fn new(index: u32, triangle: Triangle<T>, active: ActiveFeatures) -> Self {
         let (lo, hi) = triangle.bounds();
-        Self::with_bounds(index, triangle, active, lo, hi)
+        let mut candidate = Self::with_bounds(index, triangle, active, lo, hi);
+        if candidate.accurate_normal {
+            candidate.take_exact_normal();
+        }
+        candidate
+    }
+
+    /// Replaces the normal and the shape factor by those of the product of
+    /// the exact edges ([`cross_of_edges`]) other than the longest; no
+    /// normal, and an infinite shape factor, where that product is zero
+    /// (the vertices collinear). For the candidates [`Candidate::with_bounds`]
+    /// marks [`Candidate::accurate_normal`].
+    #[cold]
+    #[inline(never)]
+    fn take_exact_normal(&mut self) {
+        let (a, b, c) = (&self.triangle.a, &self.triangle.b, &self.triangle.c);
+        let [l0, l1, l2] = &self.edge_sq;
+        // `(x, y, z)` with `y - x` and `z - y` the two edges after the
+        // longest, in cyclic order, as `with_bounds` chose them.
+        let (longest, [x, y, z]) = if l0 >= l1 && l0 >= l2 {
+            (l0, [b, c, a])
+        } else if l1 >= l2 {
+            (l1, [c, a, b])
+        } else {
+            (l2, [a, b, c])
+        };
+        let exact = cross_of_edges(x, y, z);
+        let area2 = norm_without_overflow(&exact);
+        (self.normal, self.shape) = if area2 > T::zero() && area2.is_finite() {
+            (Some(exact.map(|x| x / &area2)), longest.clone() / area2)
+        } else {
+            (None, T::c(f64::INFINITY))
+        };
+        self.long_lever = self.shape > T::c(4.0) || self.edge_sq.iter().all(|l| *l < T::one());
     }
 
     /// [`Candidate::new`] given the triangle's box `[lo, hi]` (as
@@ -233,34 +279,28 @@ impl<T: Real> Candidate<T> {
         let [l0, l1, l2] = edge_sq.clone();
         // The two edges after the longest, in cyclic order: their cross
         // product is `(b - a) x (c - a)` in exact arithmetic.
-        // (`(x, y, z)` the vertices with `y - x` and `z - y` those edges.)
-        let (mut raw, longest, [x, y, z]) = if l0 >= l1 && l0 >= l2 {
-            (cross(&edges[1], &edges[2]), l0, [b, c, a])
+        let (raw, longest) = if l0 >= l1 && l0 >= l2 {
+            (cross(&edges[1], &edges[2]), l0)
         } else if l1 >= l2 {
-            (cross(&edges[2], &edges[0]), l1, [c, a, b])
+            (cross(&edges[2], &edges[0]), l1)
         } else {
-            (cross(&edges[0], &edges[1]), l2, [a, b, c])
+            (cross(&edges[0], &edges[1]), l2)
         };
-        let mut area2 = norm_unscaled(&raw);
-        // A flat cap's product of rounded edges is tilted by a few `u g`
-        // (`Candidate::tilt`); beyond the shape factor `ACCURATE_SHAPE`
-        // (`g` is at most `k`) the product is taken from the exact edges.
-        let accurate = area2 > T::zero() && area2.is_finite() && longest.clone() > T::c(ACCURATE_SHAPE) * &area2 && {
-            let exact = cross_of_edges(x, y, z);
-            let exact_area2 = norm_unscaled(&exact);
-            let usable = exact_area2 > T::zero() && exact_area2.is_finite();
-            if usable {
-                (raw, area2) = (exact, exact_area2);
-            }
-            usable
-        };
+        let area2 = norm_without_overflow(&raw);
         let has_area = area2 > T::zero() && area2.is_finite();
         // As `normalize(&raw)`, without taking the norm twice. (A product by
         // one reciprocal would save two quotients, but its extra `2u` per
         // component flipped a tie between two walls in the lab's
         // `linahan-nan-narrow-slot-diagonal` case, in `f32` and `Mpfr<24>`.)
         let normal = has_area.then(|| raw.map(|x| x / &area2));
-        let shape = if has_area { longest / area2 } else { T::c(f64::INFINITY) };
+        let shape = if has_area { longest / &area2 } else { T::c(f64::INFINITY) };
+        // A flat cap's product of rounded edges is tilted by a few `u g`
+        // (`Candidate::tilt`); beyond the shape factor `ACCURATE_SHAPE`
+        // (`g` is at most `k`) the normal is to come from the exact edges
+        // ([`Candidate::take_exact_normal`]), after the gather's loop: a
+        // call in the loop, even one never made, cost the terrain's moves
+        // 5% more instructions.
+        let accurate = has_area && shape > T::c(ACCURATE_SHAPE) && area2 > T::c(exact_product_floor::<T>());
         let long_lever = shape > T::c(4.0) || edge_sq.iter().all(|l| *l < T::one());
         Candidate {
             index,
@@ -487,15 +527,20 @@ impl<T: Real> Neighbourhood<T> {
         }
         // A finite shape factor implies finite sides: only a triangle
         // without one (degenerate or overflowing) is looked at further.
-        match self.triangles.iter().find(|c| !(c.shape.is_finite() || c.edge_sq.iter().all(Real::is_finite))) {
-            None => Ok(()),
-            Some(c) => Err(Error::InvalidArgument {
-                what: format!("triangle {}", c.index),
-                message: "measured in the body's radii, its sides are too long for this precision (their squares \
-                          overflow): split it into smaller triangles, or use a wider precision"
-                    .into(),
-            }),
+        for c in &mut self.triangles {
+            if c.accurate_normal {
+                c.take_exact_normal();
+            }
+            if !(c.shape.is_finite() || c.edge_sq.iter().all(Real::is_finite)) {
+                return Err(Error::InvalidArgument {
+                    what: format!("triangle {}", c.index),
+                    message: "measured in the body's radii, its sides are too long for this precision (their \
+                              squares overflow): split it into smaller triangles, or use a wider precision"
+                        .into(),
+                });
+            }
         }
+        Ok(())
     }
 
     /// The earliest hit of the unit sphere at `base` moving by `vel` (both in

@@ -13,6 +13,10 @@ macro_rules! impl_real_for_float {
                 $name.to_string()
             }
             #[inline]
+            fn min_positive_normal() -> f64 {
+                f64::from(<$t>::MIN_POSITIVE)
+            }
+            #[inline]
             fn from_f64(x: f64) -> Self {
                 x as $t
             }

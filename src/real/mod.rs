@@ -114,6 +114,16 @@ pub trait Real:
         2.0 * Self::unit_roundoff()
     }
 
+    /// The smallest positive normal value, as an `f64`: below it results
+    /// lose bits to gradual underflow (products' rounding errors are no
+    /// longer representable exactly). `f32::MIN_POSITIVE` and
+    /// `f64::MIN_POSITIVE`; 0 for MPFR, whose exponent range reaches far
+    /// beyond `f64`'s.
+    #[must_use]
+    fn min_positive_normal() -> f64 {
+        0.0
+    }
+
     /// The smaller of two values (`self` when they compare equal or
     /// unordered).
     #[must_use]
