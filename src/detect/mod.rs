@@ -358,6 +358,17 @@ impl<T: Real> Candidate<T> {
         if self.accurate_normal { g.min(1.0 + ACCURATE_TILT_ULPS * T::unit_roundoff() * g) } else { g }
     }
 
+    /// A bound of [`Candidate::tilt`] in the working precision: the shape
+    /// factor `k` (the tilt factor never exceeds it; no square root), or,
+    /// where the normal is the exact edges' product (slivers alone), the
+    /// tilt factor itself: `1 + 32 u k` can exceed it many times over for
+    /// a cap whose apex lies near one end.
+    #[inline]
+    #[must_use]
+    pub fn tilt_bound(&self) -> T {
+        if self.accurate_normal { T::c(self.tilt()) } else { self.shape.clone() }
+    }
+
     /// The squared distance from `p` to this candidate's box (zero inside):
     /// a lower bound of the squared distance to the triangle, cheap enough to
     /// reject a candidate before any per-triangle work. Rounded: each axis's

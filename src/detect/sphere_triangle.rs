@@ -939,24 +939,29 @@ struct SeenPlane<'a, T: Real> {
 
 impl<T: Real> SeenPlane<'_, T> {
     /// The touching tolerance of `dist` for candidate `c`,
-    /// `touch_ulps u s k`: `s` is the largest coordinate of `from` and 1,
-    /// plus the speed, and `k` the candidate's shape factor. The plane
+    /// `touch_ulps u s g'`: `s` is the largest coordinate of `from` and 1,
+    /// plus the speed, and `g'` a bound of the normal's tilt factor
+    /// ([`Candidate::tilt_bound`]: the shape factor `k`, without a square
+    /// root, or the tilt factor of a normal from the exact edges). The plane
     /// distance is the unit normal's dot product with the vertex: rounded
     /// by `u` times its size, and off by that size times the normal's
-    /// tilt, a few `u` times `1 / sin` of the largest angle
-    /// ([`Candidate::tilt`]), which `k` bounds without a square root; the
-    /// speed covers the contact point's rounding (`|vel t - n| <= 1 +
-    /// |vel|`). Measured by the contact point alone (`u` times about 1),
-    /// the window was too narrow for the plane's time: in a huge
-    /// triangle's plane, its nearest vertex `1.5e3` away, that time came
-    /// out `2.4e-5` late, the contact point `1.4e-6` beyond a side that the
-    /// exact one lies `1.1e-7` inside, and the face was missed (fuzz
-    /// finding F38); a flat cap (`k = 458`) crossed at `1e-7` of a grazing
-    /// angle was missed the same way until `k` was added. At most `44 u s'
-    /// k` for the sweep checks' magnitude `s'` (`docs/fuzzing.md`), within
-    /// their bound of `64 u s' k`.
+    /// tilt ([`Candidate::tilt`]); the speed covers the contact point's
+    /// rounding (`|vel t - n| <= 1 + |vel|`). Measured by the contact point
+    /// alone (`u` times about 1), the window was too narrow for the plane's
+    /// time: in a huge triangle's plane, its nearest vertex `1.5e3` away,
+    /// that time came out `2.4e-5` late, the contact point `1.4e-6` beyond a
+    /// side that the exact one lies `1.1e-7` inside, and the face was
+    /// missed (fuzz finding F38); a flat cap (`k = 458`) crossed at `1e-7`
+    /// of a grazing angle was missed the same way until the tilt was
+    /// added. With `k` itself for every triangle (F38's fix until R33b) a
+    /// flat cap's window reached radii beyond its sides (`k = 2.8e4`, 390
+    /// radii from the start: 10 radii), and a body sliding along a wall
+    /// onto a cap's long edge met its face a radius past the edge, already
+    /// a radius deep (R33b). At most `44 u s' k` for the sweep checks'
+    /// magnitude `s'` (`docs/fuzzing.md`), within their bound of `64 u s'
+    /// k`.
     fn tol(&self, c: &Candidate<T>, touch_ulps: f64) -> T {
-        T::c(touch_ulps * T::unit_roundoff()) * (max_abs(self.from, T::one()) + self.speed) * &c.shape
+        T::c(touch_ulps * T::unit_roundoff()) * (max_abs(self.from, T::one()) + self.speed) * c.tilt_bound()
     }
 }
 

@@ -421,3 +421,34 @@ fn bodies_pushed_onto_lone_flat_caps_stay_out_f32() {
         walk::<f32>(&mesh, radii, start, velocity, None, 12);
     }
 }
+
+/// An ellipsoid pushed down a wall onto a flat cap lying against it, in
+/// `f32` (a review's directed probe, thirty-third session: caps up to
+/// `1.6e5` long beside a wall ended up to 0.97 radii inside in 23 of 1,848
+/// runs after R33a, 70 before, and 1 after R33b, `3.3e-4` deep beside a
+/// cap `7.4e4` long). After meeting the wall the slide reached the cap's
+/// long edge at `t = 0.315`, but the sweep reported the cap's face at
+/// `t = 0.59`, a radius past the edge: the face window's tolerance (F38's
+/// fix) grew with the shape factor (`2.8e4` here, 390 radii from the
+/// start: 10 radii), far beyond its sides. It now grows with the normal's
+/// tilt, about 1 for a cap's exact normal (R33b). The body ended 0.97
+/// radii inside; the cap alone and the wall alone were cleared.
+#[test]
+fn an_ellipsoid_pushed_down_a_wall_onto_a_flat_caps_edge_stays_out_f32() {
+    let vertices = vec![
+        [-482.551_340_783_401_3, 8.486_721_634_451_204, 60.914_049_344_950_43],
+        [477.263_563_833_377_8, -13.842_712_250_822_903, -68.968_666_341_834_45],
+        [377.074_832_433_202_46, -11.515_176_834_396_438, -55.378_232_529_828_49],
+        [-490.689_829_078_199_24, 1.101_632_083_621_298_7, 59.838_220_360_290_88],
+        [484.477_826_728_723_1, -21.584_973_003_108_82, -72.122_038_619_734_97],
+        [485.045_024_626_317_46, -6.175_552_288_616_277, -70.579_713_654_749_97],
+        [-490.122_631_180_604_86, 16.511_052_798_113_845, 61.380_545_325_275_89],
+    ];
+    let mesh = TriangleMesh::new(vertices, vec![[0, 1, 2], [3, 4, 5], [3, 5, 6]]).unwrap();
+    let radii = [1.437_099_662_304_783, 0.993_265_901_404_454_7, 1.361_917_621_068_905_2];
+    let start = [70.056_165_764_047_12, -2.214_112_438_912_787, -13.638_622_777_016_353];
+    let velocity = [-0.675_451_021_242_216_6, -3.613_022_826_163_784, -1.166_366_910_473_989];
+    let end = walk::<f32>(&mesh, radii, start, velocity, None, 3);
+    // It rests on the cap's edge, about a radius above where it was stopped.
+    assert!(end[1] > -3.5, "ended at {end:?}");
+}
