@@ -161,9 +161,12 @@ pub struct Candidate<T: Real> {
     /// largest angle), `None` if the triangle is degenerate in this
     /// precision. Each edge is rounded by `u` of its length, which tilts the
     /// product by about `u |e_i| |e_j| / |e_i x e_j|`: for the two shorter
-    /// edges that is `1 / sin` of the largest angle ([`Candidate::tilt`]),
-    /// about 1 for any triangle but a flat cap (an obtuse sliver), whereas a
-    /// pair with the longest edge of a needle would give its shape factor.
+    /// edges that is `1 / sin` of the largest angle
+    /// ([`Candidate::angle_factor`]), about 1 for any triangle but a flat
+    /// cap (an obtuse sliver), whereas a pair with the longest edge of a
+    /// needle would give its shape factor. Beyond the shape factor
+    /// [`ACCURATE_SHAPE`] (every flat cap) the product is that of the exact
+    /// edges instead ([`Candidate::accurate_normal`]), tilted by a few `u`.
     pub normal: Option<Vec3<T>>,
     /// Whether [`Candidate::normal`] is the product of the exact edges
     /// ([`cross_of_edges`]), taken for a triangle whose shape factor exceeds

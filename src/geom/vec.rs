@@ -71,13 +71,17 @@ fn two_prod<T: Real>(a: &T, b: &T) -> (T, T) {
 
 /// `(y - x) x (z - y)` (in exact arithmetic the cross product of two edges
 /// of the triangle `x, y, z`, its doubled area vector) from the edges held
-/// exactly as unevaluated sums ([`two_sum`]) and the products by fused
-/// multiply-adds ([`two_prod`]). Each component is off by at most `u` of
-/// itself plus `12 u^2 |y - x| |z - y|`, so the direction is off by about
-/// `2u + 21 u^2 g` (`g = |y - x| |z - y| / |(y - x) x (z - y)|`), where
+/// exactly as unevaluated sums (`two_sum`) and the products by fused
+/// multiply-adds (`two_prod`). Each component is off by at most `u` of
+/// itself plus `28 u^2 |y - x| |z - y|` (counting every rounding; a
+/// review measured at most 1.4 in place of 28), so the direction is off by about
+/// `3u + 50 u^2 g` (`g = |y - x| |z - y| / |(y - x) x (z - y)|`), where
 /// [`cross`] of the rounded edges is off by a few `u g`: for a flat cap
 /// (`g` up to `1e6` in `f32`) the difference between a tilt of a few `u`
-/// and one of 0.1 radian. About 90 operations against [`cross`]'s nine,
+/// and one of 0.1 radian. That holds while no product's rounding error
+/// falls below the smallest normal value (gradual underflow: in `f32` for
+/// edges' products below about `2^-100`; the candidates keep the rounded
+/// edges' product there). About 90 operations against [`cross`]'s nine,
 /// so taken only for triangles that need it.
 #[must_use]
 #[inline(never)]

@@ -71,9 +71,12 @@
 //! magnitude of the relative coordinates the contact was computed from (the
 //! distance to the triangle's nearest vertex, the displacement and the
 //! position relative to the frame's start, at least one), `g` the tilt factor of the triangle's unit normal
-//! ([`Candidate::tilt`]: `1 / sin` of its largest angle, so a flat cap's
-//! distance to its plane is off by about `u g s`; `g <= 2` for any triangle whose
-//! largest angle is at most 150 degrees; for a contact on an edge or a
+//! ([`Candidate::tilt`]: `1 / sin` of its largest angle for the product of
+//! rounded edges, so a distance to its plane is off by about `u g s`; `g <= 2` for any triangle whose
+//! largest angle is at most 150 degrees, and no more than 4 for any taken
+//! that way: a triangle whose shape factor exceeds 4, every flat cap among
+//! them, takes its normal from its exact edges, whose tilt factor is about
+//! 1 until `1 / sin` of its largest angle nears `1 / u`; for a contact on an edge or a
 //! vertex, whose distance does not use the normal, the tilt's share
 //! `padding_ulps * u * s * (max(1, g / free_tilt) - 1)` is capped at the
 //! triangle's inradius squared over two, `side_excess`) and `|start|` the largest eSpace
@@ -112,9 +115,11 @@ pub struct RobustOptions {
     /// for a triangle whose normal's tilt factor `g` exceeds `free_tilt`.
     pub padding_ulps: f64,
     /// The tilt factor `g` of a triangle's unit normal
-    /// ([`Candidate::tilt`], `1 / sin` of its largest angle) beyond which
-    /// its padding grows in proportion to `g` (default 2: every triangle
-    /// whose largest angle is at most 150 degrees keeps the plain padding).
+    /// ([`Candidate::tilt`]: `1 / sin` of its largest angle, at most 4, for
+    /// the product of rounded edges; about 1 for the exact edges' product
+    /// that a flat cap's normal is) beyond which its padding grows in
+    /// proportion to `g` (default 2: every triangle whose largest angle is
+    /// at most 150 degrees keeps the plain padding).
     pub free_tilt: f64,
     /// Padding per unit of `u * |start|` (final-position rounding; default 4).
     pub position_ulps: f64,
