@@ -166,7 +166,11 @@ pub struct Candidate<T: Real> {
     /// cap (an obtuse sliver), whereas a pair with the longest edge of a
     /// needle would give its shape factor. Beyond the shape factor
     /// [`ACCURATE_SHAPE`] (every flat cap) the product is that of the exact
-    /// edges instead ([`Candidate::accurate_normal`]), tilted by a few `u`.
+    /// edges instead ([`Candidate::accurate_normal`]), tilted by a few `u`,
+    /// and `None` where that is zero (the vertices exactly collinear);
+    /// except for triangles whose doubled area is below `16 / u^2` times
+    /// the smallest normal value (`5e-23` in `f32`), where the exact
+    /// product would round into gradual underflow.
     pub normal: Option<Vec3<T>>,
     /// Whether [`Candidate::normal`] is the product of the exact edges
     /// ([`cross_of_edges`]), taken for a triangle whose shape factor exceeds
@@ -188,7 +192,7 @@ pub struct Candidate<T: Real> {
     pub edge_sq: [T; 3],
     /// Shape factor `k = max |edge|^2 / |(b - a) x (c - a)|` (at least
     /// `2 / sqrt(3)`; large for a sliver, infinite when degenerate in this
-    /// precision): the closest point of a triangle is computed with an error
+    /// precision or, for a sliver, exactly): the closest point of a triangle is computed with an error
     /// of order `u k` times the coordinates, so the rejections that use it
     /// widen their margin by `k`.
     pub shape: T,
@@ -269,7 +273,10 @@ impl<T: Real> Candidate<T> {
     }
 
     /// [`Candidate::new`] given the triangle's box `[lo, hi]` (as
-    /// [`Triangle::bounds`] computes it), when the caller has it already.
+    /// [`Triangle::bounds`] computes it), when the caller has it already,
+    /// but with the rounded edges' normal: where it marks
+    /// [`Candidate::accurate_normal`], the candidate is final only after
+    /// [`Candidate::take_exact_normal`].
     /// Always inlined, so that the gather writes the candidate once, where
     /// it lives: called, the triangle went through the stack with narrow
     /// stores read back by wide loads (a store-forwarding stall) and the
@@ -365,11 +372,21 @@ impl<T: Real> Candidate<T> {
     /// factor `k` (the tilt factor never exceeds it; no square root), or,
     /// where the normal is the exact edges' product (slivers alone), the
     /// tilt factor itself: `1 + 32 u k` can exceed it many times over for
-    /// a cap whose apex lies near one end.
+    /// a cap whose apex lies near one end. Between 1 and `k`.
     #[inline]
     #[must_use]
     pub fn tilt_bound(&self) -> T {
-        if self.accurate_normal { T::c(self.tilt()) } else { self.shape.clone() }
+        if self.accurate_normal {
+            // `tilt` is computed in `f64`: where the squared sides leave its
+            // range (MPFR triangles below about `1e-162` or beyond `1e154`
+            // radii) it can come out 0, infinite or NaN, and `k` stands in
+            // (a review: a NaN window missed the face).
+            let tilt = T::c(self.tilt());
+            if tilt >= T::one() && tilt <= self.shape {
+                return tilt;
+            }
+        }
+        self.shape.clone()
     }
 
     /// The squared distance from `p` to this candidate's box (zero inside):
@@ -541,13 +558,18 @@ impl<T: Real> Neighbourhood<T> {
         }
         // A finite shape factor implies finite sides: only a triangle
         // without one (degenerate or overflowing) is looked at further.
-        for c in &mut self.triangles {
+        // On an error no candidate is left (those after it would still wait
+        // for their exact normals).
+        for i in 0..self.triangles.len() {
+            let c = &mut self.triangles[i];
             if c.accurate_normal {
                 c.take_exact_normal();
             }
             if !(c.shape.is_finite() || c.edge_sq.iter().all(Real::is_finite)) {
+                let what = format!("triangle {}", c.index);
+                self.triangles.clear();
                 return Err(Error::InvalidArgument {
-                    what: format!("triangle {}", c.index),
+                    what,
                     message: "measured in the body's radii, its sides are too long for this precision (their \
                               squares overflow): split it into smaller triangles, or use a wider precision"
                         .into(),

@@ -746,14 +746,15 @@ fn edge_beyond_end<T: Real>(
 /// it cost the terrain replay's frame move 0.7% more instructions.)
 ///
 /// The plane's time `t_p = (plane.dist - 1) / -(n . vel)` is accurate in
-/// distance but not along the track: at a grazing angle its error, `u s k`
+/// distance but not along the track: at a grazing angle its error, `u s g'`
 /// over `|n . vel|` (`s` the magnitude of the vertex the plane distance is
-/// measured from, `k` the shape factor; [`SeenPlane::tol`]), moves the
+/// measured from, `g'` a bound of the normal's tilt factor,
+/// [`Candidate::tilt_bound`]; [`SeenPlane::tol`]), moves the
 /// contact point by `|vel| / |n . vel|` times that (fuzz findings F16,
 /// F17 and F38). So when the contact point at `t_p` is outside the
 /// triangle, the face is still touched if, at some moment of the window
 /// where the centre's plane distance is within the touching tolerance
-/// `tol = touch_ulps u s k` of 1, the centre's projection is inside: the
+/// `tol = touch_ulps u s g'` of 1, the centre's projection is inside: the
 /// earliest such moment is the hit (see [`face_window`]).
 #[inline(never)]
 fn face_contact<T: Real>(
@@ -885,7 +886,7 @@ fn face_hit<T: Real>(c: &Candidate<T>, n: &Vec3<T>, t: T, contact: Vec3<T>, base
 /// start was ruled out before), approaching it (`nv = n . vel < 0`): the
 /// face contact at which the centre's projection enters the triangle while
 /// the plane distance is still within the touching tolerance
-/// `tol = touch_ulps u s k` of 1 ([`SeenPlane::tol`]),
+/// `tol = touch_ulps u s g'` of 1 ([`SeenPlane::tol`]),
 /// if it does (fuzz finding F29: a sphere `1.5e-14` inside the plane of a
 /// triangle beside it slid into the triangle unseen, its edges'
 /// discriminants, at tangency, rounded negative). The window is

@@ -218,9 +218,11 @@ impl RobustOptions {
 /// triangles whose relative coordinates are that far from zero; without
 /// `|p|` a review found one that moved 84 radii in a frame, in `f32`,
 /// resting 2.7e-6 radii inside a ramp). Where the contact is on the face
-/// (`feature`, the part of the triangle its distance was measured to), a
-/// flat cap's padding is multiplied by its normal's tilt factor over
-/// `free_tilt` ([`RobustOptions::tilt_factor`]), because its unit normal's
+/// (`feature`, the part of the triangle its distance was measured to), the
+/// padding of a triangle whose normal's tilt factor exceeds `free_tilt`
+/// is multiplied by that factor over `free_tilt`
+/// ([`RobustOptions::tilt_factor`]; since R33a a flat cap's normal comes
+/// from its exact edges, its tilt factor about 1), because its unit normal's
 /// direction carries errors of a few `u` times that factor, so the
 /// distance to its plane, `s` from its nearest vertex, is off by as much
 /// times `s` (fuzz finding F14). A contact on an edge or a vertex is

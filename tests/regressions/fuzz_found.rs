@@ -399,8 +399,10 @@ fn sphere_touching_a_triangle_degenerate_in_f32_does_not_enter_it() {
 /// the distance to its face, taken 1e5 from its nearest vertex, was off by
 /// more than the `48 u s` padding. The normal now comes from the two
 /// shorter edges (a factor of 1e4, `1 / sin` of the largest angle:
-/// [`Candidate::tilt`]) and the padding grows with that factor; either
-/// change alone passes this case.
+/// [`Candidate::angle_factor`]) and the padding grew with that factor;
+/// either change alone passed this case. Since R33a (thirty-third session)
+/// the cap's normal is the product of its exact edges, tilted by a few
+/// `u`, and its padding the plain one.
 #[test]
 fn sphere_in_a_corner_beside_a_huge_sliver_stays_out_of_it() {
     let sliver = [
