@@ -216,6 +216,29 @@ fn exact_product_floor<T: Real>() -> f64 {
     16.0 * T::min_positive_normal() / (u * u)
 }
 
+/// The unit normal along `raw` (a product of two edges), the shape factor
+/// for the squared longest edge `longest`, and `|raw|`; no normal and an
+/// infinite shape factor where `|raw|` is zero or not finite. As
+/// `normalize(raw)`, without taking the norm twice. (A product by one
+/// reciprocal would save two quotients, but its extra `2u` per component
+/// flipped a tie between two walls in the lab's
+/// `linahan-nan-narrow-slot-diagonal` case, in `f32` and `Mpfr<24>`.)
+#[inline(always)]
+fn normal_and_shape<T: Real>(raw: &Vec3<T>, longest: T) -> (Option<Vec3<T>>, T, T) {
+    let area2 = norm_without_overflow(raw);
+    let has_area = area2 > T::zero() && area2.is_finite();
+    let normal = has_area.then(|| raw.map(|x| x / &area2));
+    let shape = if has_area { longest / &area2 } else { T::c(f64::INFINITY) };
+    (normal, shape, area2)
+}
+
+/// [`Candidate::long_lever`] for shape factor `shape` and squared sides
+/// `edge_sq`.
+#[inline(always)]
+fn long_lever<T: Real>(shape: &T, edge_sq: &[T; 3]) -> bool {
+    *shape > T::c(4.0) || edge_sq.iter().all(|l| *l < T::one())
+}
+
 /// `|v|`, or where the squares overflow (a triangle's doubled area beyond
 /// about `1.8e19` in `f32`, `1.3e154` in `f64`, sides beyond about `4e9`
 /// and `1e77` radii) the norm of `v` scaled by its largest coordinate.
@@ -262,14 +285,8 @@ impl<T: Real> Candidate<T> {
         } else {
             (l2, [a, b, c])
         };
-        let exact = cross_of_edges(x, y, z);
-        let area2 = norm_without_overflow(&exact);
-        (self.normal, self.shape) = if area2 > T::zero() && area2.is_finite() {
-            (Some(exact.map(|x| x / &area2)), longest.clone() / area2)
-        } else {
-            (None, T::c(f64::INFINITY))
-        };
-        self.long_lever = self.shape > T::c(4.0) || self.edge_sq.iter().all(|l| *l < T::one());
+        (self.normal, self.shape, _) = normal_and_shape(&cross_of_edges(x, y, z), longest.clone());
+        self.long_lever = long_lever(&self.shape, &self.edge_sq);
     }
 
     /// [`Candidate::new`] given the triangle's box `[lo, hi]` (as
@@ -296,22 +313,15 @@ impl<T: Real> Candidate<T> {
         } else {
             (cross(&edges[0], &edges[1]), l2)
         };
-        let area2 = norm_without_overflow(&raw);
-        let has_area = area2 > T::zero() && area2.is_finite();
-        // As `normalize(&raw)`, without taking the norm twice. (A product by
-        // one reciprocal would save two quotients, but its extra `2u` per
-        // component flipped a tie between two walls in the lab's
-        // `linahan-nan-narrow-slot-diagonal` case, in `f32` and `Mpfr<24>`.)
-        let normal = has_area.then(|| raw.map(|x| x / &area2));
-        let shape = if has_area { longest / &area2 } else { T::c(f64::INFINITY) };
+        let (normal, shape, area2) = normal_and_shape(&raw, longest);
         // A flat cap's product of rounded edges is tilted by a few `u g`
         // (`Candidate::tilt`); beyond the shape factor `ACCURATE_SHAPE`
         // (`g` is at most `k`) the normal is to come from the exact edges
         // ([`Candidate::take_exact_normal`]), after the gather's loop: a
         // call in the loop, even one never made, cost the terrain's moves
         // 5% more instructions.
-        let accurate = has_area && shape > T::c(ACCURATE_SHAPE) && area2 > T::c(exact_product_floor::<T>());
-        let long_lever = shape > T::c(4.0) || edge_sq.iter().all(|l| *l < T::one());
+        let accurate = normal.is_some() && shape > T::c(ACCURATE_SHAPE) && area2 > T::c(exact_product_floor::<T>());
+        let long_lever = long_lever(&shape, &edge_sq);
         Candidate {
             index,
             triangle,
@@ -560,23 +570,24 @@ impl<T: Real> Neighbourhood<T> {
         // without one (degenerate or overflowing) is looked at further.
         // On an error no candidate is left (those after it would still wait
         // for their exact normals).
-        for i in 0..self.triangles.len() {
-            let c = &mut self.triangles[i];
+        let overflowing = self.triangles.iter_mut().find_map(|c| {
             if c.accurate_normal {
                 c.take_exact_normal();
             }
-            if !(c.shape.is_finite() || c.edge_sq.iter().all(Real::is_finite)) {
-                let what = format!("triangle {}", c.index);
+            (!(c.shape.is_finite() || c.edge_sq.iter().all(Real::is_finite))).then_some(c.index)
+        });
+        match overflowing {
+            None => Ok(()),
+            Some(index) => {
                 self.triangles.clear();
-                return Err(Error::InvalidArgument {
-                    what,
+                Err(Error::InvalidArgument {
+                    what: format!("triangle {index}"),
                     message: "measured in the body's radii, its sides are too long for this precision (their \
                               squares overflow): split it into smaller triangles, or use a wider precision"
                         .into(),
-                });
+                })
             }
         }
-        Ok(())
     }
 
     /// The earliest hit of the unit sphere at `base` moving by `vel` (both in
