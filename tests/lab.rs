@@ -700,7 +700,7 @@ fn random_search_over_meshes_reproduces_its_findings() {
     use sweepslide::lab::search::search;
     let Some(meshes) = shared_meshes() else { return };
     // A seed whose 25 trials include a mesh's findings.
-    let outcome = search(4, 25, 2, &meshes).unwrap();
+    let outcome = search(8, 25, 2, &meshes).unwrap();
     let on_mesh_trials: usize = outcome.trials.iter().filter(|(f, _)| f.starts_with("mesh:")).map(|(_, n)| n).sum();
     assert!(on_mesh_trials > 0 && outcome.trials.values().sum::<usize>() == 25, "{:?}", outcome.trials);
     let findings = outcome.findings;
@@ -958,7 +958,7 @@ fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
     use sweepslide::lab::search::{FREEZE, FailureKind, search};
     // A seed whose 40 trials include a freeze and an ellipsoid's finding (a
     // change to the families or their draws may need another).
-    let outcome = search(4, 40, 1, &[]).unwrap();
+    let outcome = search(8, 40, 1, &[]).unwrap();
     assert_eq!(outcome.trials.values().sum::<usize>(), 40);
     assert!(outcome.trials.keys().all(|f| !f.starts_with("mesh:")), "{:?}", outcome.trials);
     assert!(outcome.ellipsoids > 0 && outcome.ellipsoids < 40);
@@ -1050,4 +1050,47 @@ fn a_search_without_trials_is_refused_and_its_summary_names_its_counts() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let summary = String::from_utf8_lossy(&out.stderr);
     assert!(summary.contains("in 2 trials (seed 1); trials per family: "), "{summary}");
+}
+
+/// The messy floor is what its description says: every vertex on `y = 0`,
+/// and seams the adjacency finds *active* inside the floor (T-junctions,
+/// faces given twice, decals, slivers and near-welded tiles share no edge
+/// with a single neighbour), where the tessellated floor has none; and
+/// every response walks the scene's character over it, in `f32` at the
+/// origin and `1e4` away, without entering it and with its ideal slide
+/// (within what rounding the position costs far out: 0.2% at `1e4`).
+#[test]
+fn the_messy_floor_has_active_seams_and_every_response_walks_over_them() {
+    use sweepslide::lab::scenes::build;
+    let interior_active = |spec: &str| {
+        let scene = build(spec, 1).unwrap();
+        let mesh = &scene.mesh;
+        let edge = mesh.bounds().max.x - 1e-3;
+        let mut active = 0;
+        for t in 0..mesh.len() as u32 {
+            let tri = mesh.triangle(t);
+            let corners = [tri.a, tri.b, tri.c];
+            for i in 0..3u8 {
+                let (p, q) = (corners[i as usize], corners[(i as usize + 1) % 3]);
+                let inside = [p, q].iter().all(|v| v.x.abs() < edge && v.z.abs() < edge);
+                active += usize::from(inside && mesh.active(t).edge(i));
+            }
+        }
+        (scene, active)
+    };
+    let (messy, active) = interior_active("messy-floor");
+    assert!(messy.mesh.vertices().iter().all(|v| v.y == 0.0), "a vertex off the floor's plane");
+    assert!(active > 200, "{active} active edges inside the messy floor");
+    assert_eq!(interior_active("tessellated-floor").1, 0, "the tessellated floor's seams are all internal");
+    for offset in [[0.0; 3], [1e4, 0.0, 1e4]] {
+        let scene = Arc::new(messy.offset(offset, true).unwrap());
+        assert!(scene.mesh.skipped().is_empty(), "a flaw rounded away at {offset:?}");
+        for response in Response::ALL {
+            let cfg = RunConfig { scene: scene.clone(), response, detection: None, precision: Precision::F32, seed: 1 };
+            let r = run(&cfg).unwrap().result;
+            let snag = r.snag.unwrap();
+            assert_eq!(r.penetrating_frames, 0, "{response:?} at {offset:?}");
+            assert!((snag - 1.0).abs() < 5e-3, "{response:?} at {offset:?}: snag ratio {snag}");
+        }
+    }
 }

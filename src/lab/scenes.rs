@@ -113,6 +113,11 @@ pub const BUILTIN: &[(&str, &str, &str)] = &[
         "a small level: floor, walls, pillars and ramps; an ellipsoid character steered by a random walk with gravity",
     ),
     (
+        "messy-floor",
+        "tiles per side (24)",
+        "a level floor of unit tiles with the flaws of game levels (T-junctions, faces given twice, decals, crack-filling slivers, near-welded tiles); an ellipsoid character walks over it with gravity",
+    ),
+    (
         "slot",
         "clearance g (0.01)",
         "two parallel walls 2 + g apart; the body slides along the slot pressing into one wall",
@@ -467,6 +472,61 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             s.gravity = [0.0, -0.02, 0.0];
             s.motion = Motion::RandomWalk { turn_deg: 10.0 };
             s.frames = 600;
+            s
+        }
+        "messy-floor" => {
+            // Every vertex lies on `y = 0` (exactly, in every precision):
+            // the flaws are in the mesh's connectivity, not its shape, so
+            // the ideal slide is exact. The seams they make are *active*
+            // (no neighbour shares their endpoints), where a tessellated
+            // floor's are internal.
+            let n = count(1.0, 1000.0, 24.0)?;
+            // The near-welded tiles' gaps, and the slivers' height (enough
+            // to keep them triangles in `f32` up to about `1e4` away).
+            let (half, gap, crack) = (n as f64 / 2.0, 1e-4, 2e-3);
+            for i in 0..n {
+                for k in 0..n {
+                    let (x0, z0) = (i as f64 - half, k as f64 - half);
+                    let p = |dx: f64, dz: f64| [x0 + dx, 0.0, z0 + dz];
+                    let tile = |b: &mut Builder| b.quad(p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0), UP);
+                    match rng.next_u64() % 6 {
+                        0 => tile(&mut b),
+                        // A T-junction: a vertex in the middle of the edge
+                        // the neighbour at `+x` gives whole.
+                        1 => {
+                            let m = p(1.0, 0.5);
+                            b.tri(p(0.0, 0.0), p(1.0, 0.0), m, UP);
+                            b.tri(p(0.0, 0.0), m, p(0.0, 1.0), UP);
+                            b.tri(m, p(1.0, 1.0), p(0.0, 1.0), UP);
+                        }
+                        // The tile given twice, split along both diagonals.
+                        2 => {
+                            tile(&mut b);
+                            b.quad(p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0), p(0.0, 0.0), UP);
+                        }
+                        // A decal: a smaller coplanar quad on the tile.
+                        3 => {
+                            tile(&mut b);
+                            b.quad(p(0.3, 0.2), p(0.8, 0.3), p(0.7, 0.8), p(0.2, 0.7), UP);
+                        }
+                        // A crack-filling sliver along the diagonal: a flat
+                        // cap whose apex lies `crack` off its middle.
+                        4 => {
+                            tile(&mut b);
+                            b.tri(p(0.0, 0.0), p(1.0, 1.0), p(0.5 + crack, 0.5 - crack), UP);
+                        }
+                        // A near-welded tile: shrunk by `gap` on every side.
+                        _ => b.quad(p(gap, gap), p(1.0 - gap, gap), p(1.0 - gap, 1.0 - gap), p(gap, 1.0 - gap), UP),
+                    }
+                }
+            }
+            let mut s = scene(label(24.0), description, b.mesh()?);
+            s.radii = [0.4, 0.9, 0.4];
+            s.start = [-half * 0.8, 0.95, -half * 0.3];
+            s.velocity = [0.08, 0.0, 0.03];
+            s.gravity = [0.0, -0.02, 0.0];
+            s.ideal = Some([0.08, 0.0, 0.03]);
+            s.frames = (8 * n).min(300);
             s
         }
         "slot" => {

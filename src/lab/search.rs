@@ -5,10 +5,10 @@
 //!
 //! Four kinds are looked for: penetration and NaN positions in every run,
 //! jitter where the ideal is rest (corners, the dead end), freezes where
-//! the ideal is a slide (folds, creases, wedges, slots, the tessellated
-//! floors, level and tilted), each judged by the lab's exact metrics. One
-//! trial in four moves an ellipsoid instead of the scene's sphere; it has no
-//! ideal slide, so its runs are checked for all but freezes.
+//! the ideal is a slide (folds, creases, wedges, slots, the floors:
+//! tessellated, tilted and messy), each judged by the lab's exact metrics.
+//! One trial in four moves an ellipsoid instead of the scene's own body; it
+//! has no ideal slide, so its runs are checked for all but freezes.
 
 use super::metrics::{JITTER_THRESHOLD, penetration};
 use super::rng::Rng;
@@ -129,6 +129,7 @@ fn builtin_trial(rng: &mut Rng, family: &str) -> Result<Trial, Error> {
         "slot" => (format!("slot:{:.3e}", 10f64.powf(rng.range(-5.0, 0.0))), false),
         "tessellated-floor" => ("tessellated-floor:12".to_string(), false),
         "tilted-floor" => (format!("tilted-floor:{:.2}", rng.range(1.0, 60.0)), false),
+        "messy-floor" => ("messy-floor:12".to_string(), false),
         _ => ("dead-end".to_string(), true),
     };
     let scene = build(&spec, 1)?;
@@ -318,7 +319,8 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
             Ok(SearchMesh { scene, world, path: path.clone() })
         })
         .collect::<Result<Vec<_>, Error>>()?;
-    let families = ["corner", "wedge", "crease", "fold", "slot", "dead-end", "tessellated-floor", "tilted-floor"];
+    let families =
+        ["corner", "wedge", "crease", "fold", "slot", "dead-end", "tessellated-floor", "tilted-floor", "messy-floor"];
     let count = families.len() as u64 + u64::from(!meshes.is_empty());
     let mut rng = Rng::new(seed);
     let mut plan = Vec::new();

@@ -166,7 +166,7 @@ fn seeds_for(seeded: bool, quick: bool) -> Vec<u64> {
 /// Whether a built-in scene depends on its seed.
 fn is_seeded(spec: &str) -> bool {
     let name = spec.split(':').next().unwrap_or(spec);
-    matches!(name, "tessellated-floor" | "tilted-floor" | "terrain" | "soup" | "room")
+    matches!(name, "tessellated-floor" | "tilted-floor" | "messy-floor" | "terrain" | "soup" | "room")
 }
 
 /// The whole matrix, in its fixed order.
