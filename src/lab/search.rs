@@ -293,9 +293,9 @@ fn confirm_jitter(cfg: &RunConfig) -> Result<bool, Error> {
 }
 
 /// Runs `trials` random trials from `seed` on `jobs` threads and returns
-/// every failure, in trial order. The trials draw from eight built-in scene
-/// families and, where `meshes` names any OBJ files, a ninth: bodies moved
-/// over those meshes (without meshes the draws are those of the eight
+/// every failure, in trial order. The trials draw from nine built-in scene
+/// families and, where `meshes` names any OBJ files, a tenth: bodies moved
+/// over those meshes (without meshes the draws are those of the nine
 /// alone, so a seed finds what it found before meshes were offered).
 ///
 /// # Errors
