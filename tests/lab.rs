@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::Command;
 use std::sync::Arc;
 use sweepslide::geom::{Vec3, vec3};
-use sweepslide::lab::metrics::{EXACT_BITS, jitter, penetrated, penetration, snag_ratio, triangle_distance_sq};
+use sweepslide::lab::metrics::{EXACT_BITS, drift, jitter, penetrated, penetration, snag_ratio, triangle_distance_sq};
 use sweepslide::lab::{Precision, RunConfig, Scene, run};
 use sweepslide::respond::Response;
 use sweepslide::world::{TriangleMesh, World};
@@ -157,6 +157,52 @@ fn snag_ratio_is_progress_over_ideal() {
     let s = snag_ratio(&vec3::<f64>(0.0, 1.0, 0.0), &vec3(5.0, 1.0, 3.0), [0.1, 0.0, 0.0], 100).unwrap();
     assert!((s - 0.5).abs() < 1e-15);
     assert_eq!(snag_ratio(&vec3::<f64>(0.0, 0.0, 0.0), &vec3(1.0, 0.0, 0.0), [0.0; 3], 10), None);
+}
+
+/// The drift starts at the first frame that moves as the ideal does (the
+/// fall onto the floor before it is the approach), measures only the
+/// displacement across the ideal, in radii (eSpace for an ellipsoid), is
+/// exactly zero for a slide along it, even where `f32` positions far from
+/// the origin cannot move by exactly the ideal, and is absent where no
+/// frame ever moves as the ideal does, or the positions' rounding is too
+/// coarse to tell.
+#[test]
+fn drift_is_the_distance_off_the_ideal_line_after_the_approach() {
+    let ideal = [0.1, 0.0, 0.0];
+    let falling = [(0.0, 1.05, 0.0), (0.1, 1.03, 0.0), (0.2, 1.0, 0.0)];
+    let path = |rest: &[(f64, f64, f64)]| -> Vec<_> {
+        falling.iter().chain(rest).map(|&(x, y, z)| vec3::<f64>(x, y, z)).collect::<Vec<_>>()
+    };
+    let straight = path(&[(0.3, 1.0, 0.0), (0.4, 1.0, 0.0), (0.5, 1.0, 0.0)]);
+    assert_eq!(drift(&straight, ideal, [0.5; 3]), Some(0.0));
+    // Turned aside by 0.05 world units (0.1 radii) after the approach; the
+    // fall before it (0.05) is not counted.
+    let aside = path(&[(0.3, 1.0, 0.0), (0.4, 1.0, 0.05), (0.5, 1.0, 0.05)]);
+    let d = drift(&aside, ideal, [0.5; 3]).unwrap();
+    assert!((d - 0.1).abs() < 1e-15, "{d}");
+    // An ellipsoid that sinks 0.009 world units, 0.01 of its vertical
+    // radius, while it slides; its progress along the ideal does not count.
+    let sinking = path(&[(0.3, 1.0, 0.0), (0.45, 0.991, 0.0), (0.5, 0.991, 0.0)]);
+    let d = drift(&sinking, ideal, [0.4, 0.9, 0.4]).unwrap();
+    assert!((d - 0.01).abs() < 1e-15, "{d}");
+    // In f32 at 1e5 a step of 0.1 rounds to 0.09375 or 0.1015625: still a
+    // slide along the ideal, with no drift.
+    let far: Vec<_> = (0..20).map(|k| vec3::<f32>(1e5 + 0.1 * f64::from(k), 1.0, 1e5)).collect();
+    assert!(far.windows(2).any(|w| w[1].x - w[0].x != 0.1_f32), "the steps round");
+    assert_eq!(drift(&far, ideal, [1.0; 3]), Some(0.0));
+    // A step of 0.01 at 4e4 is below the rounding of the positions there:
+    // no frame can be told to slide as the ideal does.
+    let coarse: Vec<_> = (0..20).map(|k| vec3::<f32>(4e4 + 0.01 * f64::from(k), 1.0, 4e4)).collect();
+    assert_eq!(drift(&coarse, [0.01, 0.0, 0.0], [1.0; 3]), None);
+    // Never sliding as the ideal does (still falling, or stopped), no
+    // ideal, a NaN position: no drift.
+    assert_eq!(drift(&path(&[]), ideal, [0.5; 3]), None);
+    let stopped = path(&[(0.2, 1.0, 0.0), (0.2, 1.0, 0.0)]);
+    assert_eq!(drift(&stopped, ideal, [0.5; 3]), None);
+    assert_eq!(drift(&straight, [0.0; 3], [0.5; 3]), None);
+    let mut broken = straight.clone();
+    broken[4].y = f64::NAN;
+    assert_eq!(drift(&broken, ideal, [0.5; 3]), None);
 }
 
 /// Brute force: the minimum of the squared distance over a fine barycentric
@@ -1092,5 +1138,24 @@ fn the_messy_floor_has_active_seams_and_every_response_walks_over_them() {
             assert_eq!(r.penetrating_frames, 0, "{response:?} at {offset:?}");
             assert!((snag - 1.0).abs() < 5e-3, "{response:?} at {offset:?}: snag ratio {snag}");
         }
+    }
+}
+
+/// Below `atan(1/2)`, `26.57` degrees, a crease's push slid along its far
+/// slope climbs it for good: the scene's ideal slide is that climb, not the
+/// crease's line (the drift metric found the line wrong there: no frame
+/// ever moved as it does). At 30 degrees the push comes back down into the
+/// crease and slides along it.
+#[test]
+fn a_shallow_crease_slides_up_its_far_slope() {
+    for (angle, climbs) in [(10.0, true), (26.5, true), (30.0, false)] {
+        let scene = Arc::new(sweepslide::lab::scenes::build(&format!("crease:{angle}"), 1).unwrap());
+        let ideal = scene.ideal.unwrap();
+        assert_eq!(ideal[0] < 0.0, climbs, "crease:{angle}: {ideal:?}");
+        let cfg = RunConfig { scene, response: Response::Robust, detection: None, precision: Precision::F64, seed: 1 };
+        let r = run(&cfg).unwrap().result;
+        let drift = r.drift.unwrap_or_else(|| panic!("crease:{angle}: no frame slid as the ideal does"));
+        assert!(drift < 1e-4, "crease:{angle}: drift {drift}");
+        assert!(r.snag.is_some_and(|s| (s - 1.0).abs() < 3e-3), "crease:{angle}: {:?}", r.snag);
     }
 }

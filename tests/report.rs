@@ -164,6 +164,7 @@ fn quick_report_is_complete_and_self_contained() {
     assert!(verdict("In f32 both faithful responses freeze in a V-shaped valley"));
     assert!(verdict("In f32, away from the origin, on a tilted floor Fauerby's response freezes"));
     assert!(verdict("The robust response does not snag"));
+    assert!(verdict("The robust response keeps to the ideal slide's line"));
     let cases = sweepslide::lab::scenes::cases_in(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/fuzz"));
     assert!(!cases.is_empty());
     let (info, entries) = matrix(true, &[], &cases);

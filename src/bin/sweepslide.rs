@@ -488,6 +488,9 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
         if let Some(s) = r.snag {
             out!("  snag ratio    {s:.6} (1 = ideal slide)");
         }
+        if let Some(d) = r.drift {
+            out!("  drift         {d:.3e} radii off the ideal slide's line");
+        }
         out!("  final position {:?}", r.final_position);
         out!("  time per move  {:.0} ns (the moves again, back to back, after the run)", r.ns_per_move);
     }

@@ -290,3 +290,98 @@ pub fn snag_ratio<T: Real>(start: &Vec3<T>, end: &Vec3<T>, ideal_per_frame: [f64
     let along = dot(&moved, &ideal) / len.clone();
     Some((along / (len * frames as f64)).to_f64())
 }
+
+/// Drift above this counts as leaving the ideal slide's line (a hundredth
+/// of a radius, the robust response's largest padding `max_padding`): the
+/// threshold of the report's claim.
+pub const DRIFT_THRESHOLD: f64 = 1e-2;
+
+/// How closely a frame's displacement must match the ideal slide's for the
+/// body to count as sliding as the ideal does ([`drift`]), relative to the
+/// ideal's length, beyond the rounding of the positions and of the step
+/// itself ([`STEADY_STEP_ULPS`]). Tight, because an approach slower than
+/// this counts as drift: near `26.57` degrees a crease's push creeps along
+/// its slope towards the valley at a rate that vanishes with the
+/// difference of angles, and at `1e-3` such a creep showed as `1.9e-2`
+/// radii of drift in every response. At `1e-4` a creep needs 100 radii of
+/// travel to reach the report's threshold ([`DRIFT_THRESHOLD`]); the
+/// report's and the search's runs travel at most 30. Not tighter: Fauerby's
+/// slide along a crease falls short of the ideal by about `1.3e-5` of it
+/// every frame (`veryCloseDistance`), and at `1e-6` it never counted as
+/// sliding.
+const STEADY_TOLERANCE: f64 = 1e-4;
+
+/// The most rounding of the positions, relative to the ideal step, with
+/// which a frame still counts as sliding as the ideal does ([`drift`]):
+/// beyond it the precision does not carry the step, and any step of about
+/// its size would pass the test (a search's body falling onto a fold
+/// `4e4` out in `f32`, `0.012` of rounding against a step of `0.0116`,
+/// counted as sliding from the first frame and drifted `0.48` radii).
+const STEADY_ROUNDING: f64 = 0.5;
+
+/// The rounding a response's own arithmetic leaves in a step that slides
+/// as the ideal does (a projection, a crease's direction, eSpace and back),
+/// in units of the run's unit roundoff times the step's length: part of
+/// [`drift`]'s tolerance, well above what a few roundings give.
+const STEADY_STEP_ULPS: f64 = 64.0;
+
+/// The drift: how far, in radii, the body leaves the line of the ideal
+/// slide once it slides as the ideal does. Its window starts at the first
+/// frame whose displacement matches the ideal one within
+/// [`STEADY_TOLERANCE`] plus [`STEADY_STEP_ULPS`] `u` of its length, once
+/// each coordinate's difference is reduced by the rounding of the two
+/// positions, `2 u` times the sum of their magnitudes in that coordinate
+/// (`u` the run's unit roundoff: far from the origin in `f32` a position
+/// cannot move by exactly the ideal), where that rounding is at most
+/// [`STEADY_ROUNDING`] of the step: before it the body approaches the surfaces it will
+/// slide along (a crease's slopes, a wedge's apex, the floor it falls on),
+/// and moving across the ideal is what it should do. From there to the end
+/// the drift is the length of the net displacement's component across the
+/// ideal direction, both measured in eSpace (world coordinates divided by
+/// `radii`, where an ellipsoid's slide is projected): zero for a slide
+/// straight along the ideal, whatever its length; for a body turned aside
+/// by a seam how far it went astray; for one that sinks or rises as it
+/// slides the height it changed. The snag ratio ([`snag_ratio`]) measures
+/// the other component, along the ideal, over the whole run. `None`
+/// without an ideal slide or positive radii, where a position is not
+/// finite, or where no frame moves as the ideal does (the body never
+/// settled into the slide, the snag ratio says how far it got, or its
+/// positions' rounding is too coarse to tell).
+///
+/// Computed at [`judge_bits`] from the stored positions: the across
+/// component is the cross product of the displacement and the ideal, both
+/// scaled by the products of the other two radii instead of divided by
+/// their own (exact at that precision for `f32` and `f64` values, so a
+/// slide exactly along the ideal drifts by exactly zero), then divided by
+/// the ideal's scaled length and the radii's product: a relative
+/// `2^-bits` or so.
+#[must_use]
+pub fn drift<T: Real>(positions: &[Vec3<T>], ideal_per_frame: [f64; 3], radii: [f64; 3]) -> Option<f64> {
+    let bits = judge_bits::<T>();
+    let finite = positions.iter().all(|p| p.iter().all(Real::is_finite));
+    if !finite || !radii.iter().all(|r| *r > 0.0 && r.is_finite()) {
+        return None;
+    }
+    let ideal = ideal_per_frame.map(|x| Float::with_val(bits, x));
+    let ideal_len = dot(&ideal, &ideal).sqrt().to_f64();
+    if ideal_len == 0.0 {
+        return None;
+    }
+    let exact_positions: Vec<V> = positions.iter().map(exact).collect();
+    let steady = (1..exact_positions.len()).find(|&f| {
+        let off = sub(&sub(&exact_positions[f], &exact_positions[f - 1]), &ideal);
+        let rounding = [0, 1, 2]
+            .map(|i| 2.0 * T::unit_roundoff() * (positions[f][i].to_f64().abs() + positions[f - 1][i].to_f64().abs()));
+        let beyond_rounding = [0, 1, 2].map(|i| (off[i].to_f64().abs() - rounding[i]).max(0.0));
+        let norm = |v: [f64; 3]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let tolerance = (STEADY_TOLERANCE + STEADY_STEP_ULPS * T::unit_roundoff()) * ideal_len;
+        norm(rounding) <= STEADY_ROUNDING * ideal_len && norm(beyond_rounding) <= tolerance
+    })?;
+    let scale = [0, 1, 2].map(|i| Float::with_val(bits, radii[(i + 1) % 3]) * radii[(i + 2) % 3]);
+    let scaled = |v: &V| -> V { [0, 1, 2].map(|i| Float::with_val(bits, &v[i] * &scale[i])) };
+    let moved = scaled(&sub(exact_positions.last()?, &exact_positions[steady - 1]));
+    let ideal = scaled(&ideal);
+    let across = cross(&moved, &ideal);
+    let volume = Float::with_val(bits, &scale[0] * radii[0]);
+    Some((dot(&across, &across).sqrt() / dot(&ideal, &ideal).sqrt() / volume).to_f64())
+}

@@ -1,6 +1,6 @@
 //! Runs a scene with one response in one precision and measures it.
 
-use super::metrics::{jitter, penetrated, penetration, snag_ratio};
+use super::metrics::{drift, jitter, penetrated, penetration, snag_ratio};
 use super::scenes::{Scene, Steering};
 use crate::detect::Detection;
 use crate::geom::{Ellipsoid, Feature, Vec3, to_f64, vec3};
@@ -183,6 +183,12 @@ pub struct RunResult {
     /// Snag ratio where the scene has an ideal slide (1 = no snag).
     #[serde(with = "super::json_float::optional")]
     pub snag: Option<f64>,
+    /// Drift where the scene has an ideal slide: how far, in radii, the
+    /// net displacement leaves the ideal slide's line
+    /// ([`super::metrics::drift`]; absent in `runs.json` files written
+    /// before it was measured).
+    #[serde(default, with = "super::json_float::optional")]
+    pub drift: Option<f64>,
     /// Mean wall-clock nanoseconds per `move_body` call.
     pub ns_per_move: f64,
     /// Triangles of the scene degenerate once rounded into the run's
@@ -497,6 +503,7 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
         plane_flips,
         final_position: [0, 1, 2].map(|i| p[i].to_f64()),
         snag: scene.ideal.and_then(|ideal| snag_ratio(&start, &p, ideal, frames)),
+        drift: scene.ideal.and_then(|ideal| drift(&positions, ideal, scene.radii)),
         ns_per_move: ns as f64 / moves.max(1) as f64,
         degenerate_triangles: world.degenerate_in_backend(),
         units_per_meter: scene.units_per_meter,

@@ -93,7 +93,11 @@ pub const BUILTIN: &[(&str, &str, &str)] = &[
         "angle in degrees (10)",
         "the paper's Fig. 4: an acute wedge, body pushed into its apex with a free direction along the edge",
     ),
-    ("crease", "slope in degrees (30)", "a V-shaped valley; the body pushes down into it and along it"),
+    (
+        "crease",
+        "slope in degrees (30)",
+        "a V-shaped valley; the body pushes down into it and along it (below 26.57 degrees, where tan = 1/2, the push climbs the far slope instead)",
+    ),
     (
         "fold",
         "fold angle in degrees (0.01)",
@@ -331,7 +335,15 @@ pub fn build(spec: &str, seed: u64) -> Result<Scene, Error> {
             // 3 above the right slope along its normal.
             s.start = [2.0 - 3.0 * a.sin(), 2.0 * a.tan() + 3.0 * a.cos(), -20.0];
             s.velocity = [-0.05, -0.1, 0.1];
-            s.ideal = Some([0.0, 0.0, 0.1]);
+            // The push slid along the left slope, where the body lands after
+            // the right one: back down into the crease where `tan a >= 1/2`,
+            // so the slide follows the crease; below that angle it climbs
+            // the left slope for good, and that is the ideal slide (the
+            // drift metric found the crease's ideal wrong there).
+            let left = Vector3::new(a.sin(), a.cos(), 0.0);
+            let push = Vector3::from(s.velocity);
+            let along_left = push - left * push.dot(&left);
+            s.ideal = Some(if along_left.x >= 0.0 { [0.0, 0.0, 0.1] } else { along_left.into() });
             s.frames = 300;
             s
         }

@@ -19,7 +19,7 @@ pub struct Claim {
     pub evidence: String,
 }
 
-pub use crate::lab::metrics::JITTER_THRESHOLD;
+pub use crate::lab::metrics::{DRIFT_THRESHOLD, JITTER_THRESHOLD};
 /// A snag ratio below this counts as snagging.
 pub const SNAG_THRESHOLD: f64 = 0.999;
 
@@ -347,6 +347,27 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
         text: "The robust response does not snag: it slides at least 99.9% of the ideal distance.",
         reproduced: !rs.is_empty() && rs.iter().all(|r| r.snag.is_some_and(|s| s >= SNAG_THRESHOLD)),
         evidence: smallest_snag(rs.iter().copied(), "runs"),
+    });
+    let measured: Vec<&RunResult> = rs.iter().copied().filter(|r| r.drift.is_some()).collect();
+    let unsettled = rs.len() - measured.len();
+    claims.push(Claim {
+        source: "sweepslide",
+        text: "The robust response keeps to the ideal slide's line: once it slides as the ideal does, it drifts off that \
+               line by less than its largest padding, a hundredth of a radius.",
+        reproduced: !measured.is_empty() && measured.iter().all(|r| r.drift.is_some_and(|d| d < DRIFT_THRESHOLD)),
+        evidence: format!(
+            "{} over {} runs{}",
+            worst(measured.iter().copied(), |r| r.drift.unwrap_or(f64::NAN), " radii"),
+            measured.len(),
+            if unsettled == 0 {
+                String::new()
+            } else {
+                format!(
+                    " (left out: {unsettled} runs with an ideal slide that no frame moved as, still approaching \
+                     its surfaces when the run ended)"
+                )
+            }
+        ),
     });
     claims
 }
