@@ -309,7 +309,7 @@ pub const DRIFT_THRESHOLD: f64 = 1e-2;
 /// slide along a crease falls short of the ideal by about `1.3e-5` of it
 /// every frame (`veryCloseDistance`), and at `1e-6` it never counted as
 /// sliding.
-const STEADY_TOLERANCE: f64 = 1e-4;
+pub const STEADY_TOLERANCE: f64 = 1e-4;
 
 /// The most rounding of the positions, relative to the ideal step, with
 /// which a frame still counts as sliding as the ideal does ([`drift`]):
@@ -317,13 +317,13 @@ const STEADY_TOLERANCE: f64 = 1e-4;
 /// its size would pass the test (a search's body falling onto a fold
 /// `4e4` out in `f32`, `0.012` of rounding against a step of `0.0116`,
 /// counted as sliding from the first frame and drifted `0.48` radii).
-const STEADY_ROUNDING: f64 = 0.5;
+pub const STEADY_ROUNDING: f64 = 0.5;
 
 /// The rounding a response's own arithmetic leaves in a step that slides
 /// as the ideal does (a projection, a crease's direction, eSpace and back),
 /// in units of the run's unit roundoff times the step's length: part of
 /// [`drift`]'s tolerance, well above what a few roundings give.
-const STEADY_STEP_ULPS: f64 = 64.0;
+pub const STEADY_STEP_ULPS: f64 = 64.0;
 
 /// The drift: how far, in radii, the body leaves the line of the ideal
 /// slide once it slides as the ideal does. Its window starts at the first
