@@ -31,7 +31,7 @@ enum Command {
     Report(ReportArgs),
     /// Search random scenes (angles, clearances, speeds, offsets; spheres and
     /// ellipsoids; with --meshes, bodies over real meshes too) for
-    /// penetration, NaN, jitter and freezes, and print how to reproduce each
+    /// penetration, NaN, jitter, freezes and drift, and print how to reproduce each
     /// failure.
     Search {
         /// Seed of the search.

@@ -3,14 +3,15 @@
 //! responses. Every failure comes with the `sweepslide run` command that
 //! reproduces it.
 //!
-//! Four kinds are looked for: penetration and NaN positions in every run,
-//! jitter where the ideal is rest (corners, the dead end), freezes where
-//! the ideal is a slide (folds, creases, wedges, slots, the floors:
-//! tessellated, tilted and messy), each judged by the lab's exact metrics.
-//! One trial in four moves an ellipsoid instead of the scene's own body; it
-//! has no ideal slide, so its runs are checked for all but freezes.
+//! Five kinds are looked for: penetration and NaN positions in every run,
+//! jitter where the ideal is rest (corners, the dead end), freezes and
+//! drift off the ideal's line where the ideal is a slide (folds, creases,
+//! wedges, slots, the floors: tessellated, tilted and messy), each judged
+//! by the lab's exact metrics. One trial in four moves an ellipsoid
+//! instead of the scene's own body; it has no ideal slide, so its runs are
+//! checked for all but freezes and drift.
 
-use super::metrics::{JITTER_THRESHOLD, penetration};
+use super::metrics::{DRIFT_THRESHOLD, JITTER_THRESHOLD, penetration};
 use super::rng::Rng;
 use super::runner::{FrameRecord, Precision, RunConfig, RunResult, run_all};
 use super::scenes::{Scene, build};
@@ -42,6 +43,13 @@ pub enum FailureKind {
     /// [`FREEZE_STEP`] times the unit roundoff of the position's largest
     /// coordinate, so the precision could have carried it.
     Freeze,
+    /// The body left the ideal slide's line: once it slid as the ideal
+    /// does, it drifted across it ([`super::metrics::drift`]) by
+    /// [`DRIFT_THRESHOLD`] radii or more beyond what rounding its positions
+    /// every frame can carry it ([`DRIFT_ROUNDING`]) and beyond the least
+    /// drift of the other responses in the same trial and precision, while
+    /// it stayed on the scene's surfaces, where the ideal holds.
+    Drift,
 }
 
 /// One failure and how to reproduce it.
@@ -50,7 +58,7 @@ pub struct Finding {
     /// The kind of failure.
     pub kind: FailureKind,
     /// Its size: the largest penetration, the NaN frame count, the jitter,
-    /// or the snag ratio of a freeze.
+    /// the snag ratio of a freeze, or the drift in radii.
     pub value: f64,
     /// The run's metrics.
     pub result: RunResult,
@@ -270,6 +278,52 @@ fn carried(ideal: &[f64; 3], start: &[f64; 3], end: &[f64; 3], precision: Precis
     step >= FREEZE_STEP * 2f64.powi(-(precision.bits() as i32)) * largest
 }
 
+/// A drift counts only beyond this many unit roundoffs of the largest
+/// coordinate the run held (start or end), in radii, per frame (and one
+/// more): rounding a position moves it across the ideal by up to `sqrt(3)
+/// u` of that coordinate, and a slide along a surface that does not push
+/// back sideways (a floor, the line of a nearly flat fold) keeps every such
+/// offset. A robust body in a fold of `0.05` degrees `2.7e4` from the
+/// origin in `f32` drifted `0.04` radii in 60 frames that way (`1.1e-4` in
+/// `f64`).
+pub const DRIFT_ROUNDING: f64 = 2.0;
+
+/// The drift a run's rounding can explain, in radii ([`DRIFT_ROUNDING`]):
+/// over `frames` frames, for the largest coordinate of `start` and `end`
+/// and the smallest of `radii`.
+fn drift_rounding(radii: &[f64; 3], start: &[f64; 3], end: &[f64; 3], frames: usize, precision: Precision) -> f64 {
+    let largest = start.iter().chain(end).fold(0f64, |m, v| m.max(v.abs()));
+    let smallest_radius = radii.iter().copied().fold(f64::INFINITY, f64::min);
+    let u = 2f64.powi(-(precision.bits() as i32));
+    DRIFT_ROUNDING * (frames + 1) as f64 * u * largest / smallest_radius
+}
+
+/// How much more `drift` is than the least of the other responses' drifts
+/// in the same trial and precision (`others`; those without one left
+/// out, all of it where none has one). Exact collide-and-slide gives one
+/// trajectory; what all three responses share is the scene's or the
+/// precision's (a body that a push too slow to show above the positions'
+/// rounding still lowers onto a floor `4.6e3` out in `f32`, drifting
+/// `0.05` radii in all three), not a response's.
+fn drift_beyond_others(drift: f64, others: impl Iterator<Item = Option<f64>>) -> f64 {
+    drift - others.flatten().reduce(f64::min).unwrap_or(0.0)
+}
+
+/// Whether every frame of a trajectory's last quarter ended on the scene's
+/// surfaces, clear of them by at most half of [`DRIFT_THRESHOLD`] plus
+/// `rounding` (radii): a scene's ideal slide holds only there. The
+/// search's pushes, up to five times the scene's own, carry a body past
+/// the end of a 12-cell floor, where it falls and every response
+/// "drifted" alike; a body that left its surface by less than that cannot
+/// have drifted the threshold by leaving it. The frames' penetration is in
+/// world units for a sphere (of radius `radii[0]`) and in radii for an
+/// ellipsoid ([`penetration`]).
+fn on_surfaces(frames: &[FrameRecord], radii: &[f64; 3], rounding: f64) -> bool {
+    let unit = if radii.iter().all(|r| *r == radii[0]) { radii[0] } else { 1.0 };
+    let tail = &frames[frames.len() - (frames.len() / 4).max(1).min(frames.len())..];
+    tail.iter().all(|f| f.penetration.is_some_and(|p| -p / unit <= 0.5 * DRIFT_THRESHOLD + rounding))
+}
+
 /// Whether the last quarter of a trajectory goes back and forth (its net
 /// displacement is less than half its path) rather than progressing, say
 /// along a ramp in steps of the float spacing far from the origin, which the
@@ -347,8 +401,12 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
     }
     let configs: Vec<RunConfig> = plan.iter().map(|(_, c)| c.clone()).collect();
     let outputs = run_all(&configs, jobs, &|_| {})?;
+    // Each trial's drift in each precision, for every response (the plan
+    // runs them one after the other): the others' least is the control of
+    // a response's drift ([`drift_beyond_others`]).
+    let drifts: Vec<Option<f64>> = outputs.iter().map(|o| o.as_ref().ok().and_then(|o| o.result.drift)).collect();
     let mut findings = Vec::new();
-    for ((t, cfg), out) in plan.iter().zip(outputs) {
+    for (i, ((t, cfg), out)) in plan.iter().zip(outputs).enumerate() {
         // A run that fails is a defect of the search (its scenes are valid
         // input), reported with the command that reproduces it.
         let out = out.map_err(|e| Error::InvalidArgument {
@@ -379,13 +437,31 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
         {
             found(FailureKind::Freeze, snag);
         }
+        let rounding = drift_rounding(&cfg.scene.radii, &cfg.scene.start, &r.final_position, r.frames, cfg.precision);
+        let group = i - i % Response::ALL.len();
+        let others = (group..group + Response::ALL.len()).filter(|&j| j != i).map(|j| drifts[j]);
+        if let Some(drift) = r.drift
+            && drift_beyond_others(drift, others) >= DRIFT_THRESHOLD + rounding
+            && on_surfaces(&out.frames, &cfg.scene.radii, rounding)
+        {
+            found(FailureKind::Drift, drift);
+        }
     }
     Ok(Outcome { findings, ..tried })
 }
 
 #[cfg(test)]
 mod tests {
-    use super::shell_word;
+    use super::{drift_beyond_others, shell_word};
+
+    /// A drift is judged against the least of the others' (those that
+    /// have one), or against none where no other response has one.
+    #[test]
+    fn a_drift_counts_beyond_the_least_other_drift() {
+        assert_eq!(drift_beyond_others(0.05, [Some(0.048), None].into_iter()), 0.05 - 0.048);
+        assert_eq!(drift_beyond_others(0.05, [Some(0.01), Some(0.03)].into_iter()), 0.05 - 0.01);
+        assert_eq!(drift_beyond_others(0.07, [None, None].into_iter()), 0.07);
+    }
 
     /// A review's finding (twenty-sixth session): a mesh path with a space
     /// printed bare, and the command split there in a shell.
