@@ -368,9 +368,10 @@ pub fn drift<T: Real>(positions: &[Vec3<T>], ideal_per_frame: [f64; 3], radii: [
     if ideal_len == 0.0 {
         return None;
     }
-    let exact_positions: Vec<V> = positions.iter().map(exact).collect();
-    let steady = (1..exact_positions.len()).find(|&f| {
-        let off = sub(&sub(&exact_positions[f], &exact_positions[f - 1]), &ideal);
+    // Exact positions only where they are looked at: frame by frame until
+    // the first that slides as the ideal does, then the last.
+    let steady = (1..positions.len()).find(|&f| {
+        let off = sub(&sub(&exact(&positions[f]), &exact(&positions[f - 1])), &ideal);
         let rounding = [0, 1, 2]
             .map(|i| 2.0 * T::unit_roundoff() * (positions[f][i].to_f64().abs() + positions[f - 1][i].to_f64().abs()));
         let beyond_rounding = [0, 1, 2].map(|i| (off[i].to_f64().abs() - rounding[i]).max(0.0));
@@ -380,7 +381,7 @@ pub fn drift<T: Real>(positions: &[Vec3<T>], ideal_per_frame: [f64; 3], radii: [
     })?;
     let scale = [0, 1, 2].map(|i| Float::with_val(bits, radii[(i + 1) % 3]) * radii[(i + 2) % 3]);
     let scaled = |v: &V| -> V { [0, 1, 2].map(|i| Float::with_val(bits, &v[i] * &scale[i])) };
-    let moved = scaled(&sub(exact_positions.last()?, &exact_positions[steady - 1]));
+    let moved = scaled(&sub(&exact(positions.last()?), &exact(&positions[steady - 1])));
     let ideal = scaled(&ideal);
     let across = cross(&moved, &ideal);
     let volume = Float::with_val(bits, &scale[0] * radii[0]);

@@ -265,6 +265,20 @@ pub const FREEZE: f64 = 0.5;
 /// the step per frame, far from the half that a freeze loses.
 pub const FREEZE_STEP: f64 = 64.0;
 
+/// The unit roundoff of `precision` times the largest coordinate of
+/// `start` and `end`: how far rounding can move a position the run held,
+/// per coordinate (the scale of [`FREEZE_STEP`] and [`DRIFT_ROUNDING`]).
+fn position_rounding(start: &[f64; 3], end: &[f64; 3], precision: Precision) -> f64 {
+    let largest = start.iter().chain(end).fold(0f64, |m, v| m.max(v.abs()));
+    2f64.powi(-(precision.bits() as i32)) * largest
+}
+
+/// The last quarter of a trajectory's frames, at least `least` of them
+/// (all where there are fewer).
+fn last_quarter(frames: &[FrameRecord], least: usize) -> &[FrameRecord] {
+    &frames[frames.len() - (frames.len() / 4).max(least).min(frames.len())..]
+}
+
 /// Whether a run's ideal step per frame is long enough for its precision to
 /// carry, from `start` to `end` ([`FREEZE_STEP`]).
 fn carried(ideal: &[f64; 3], start: &[f64; 3], end: &[f64; 3], precision: Precision) -> bool {
@@ -274,8 +288,7 @@ fn carried(ideal: &[f64; 3], start: &[f64; 3], end: &[f64; 3], precision: Precis
         return false;
     }
     let step = ideal.iter().map(|v| v * v).sum::<f64>().sqrt();
-    let largest = start.iter().chain(end).fold(0f64, |m, v| m.max(v.abs()));
-    step >= FREEZE_STEP * 2f64.powi(-(precision.bits() as i32)) * largest
+    step >= FREEZE_STEP * position_rounding(start, end, precision)
 }
 
 /// A drift counts only beyond this many unit roundoffs of the largest
@@ -292,10 +305,8 @@ pub const DRIFT_ROUNDING: f64 = 2.0;
 /// over `frames` frames, for the largest coordinate of `start` and `end`
 /// and the smallest of `radii`.
 fn drift_rounding(radii: &[f64; 3], start: &[f64; 3], end: &[f64; 3], frames: usize, precision: Precision) -> f64 {
-    let largest = start.iter().chain(end).fold(0f64, |m, v| m.max(v.abs()));
     let smallest_radius = radii.iter().copied().fold(f64::INFINITY, f64::min);
-    let u = 2f64.powi(-(precision.bits() as i32));
-    DRIFT_ROUNDING * (frames + 1) as f64 * u * largest / smallest_radius
+    DRIFT_ROUNDING * (frames + 1) as f64 * position_rounding(start, end, precision) / smallest_radius
 }
 
 /// How much more `drift` is than the least of the other responses' drifts
@@ -320,8 +331,7 @@ fn drift_beyond_others(drift: f64, others: impl Iterator<Item = Option<f64>>) ->
 /// ellipsoid ([`penetration`]).
 fn on_surfaces(frames: &[FrameRecord], radii: &[f64; 3], rounding: f64) -> bool {
     let unit = if radii.iter().all(|r| *r == radii[0]) { radii[0] } else { 1.0 };
-    let tail = &frames[frames.len() - (frames.len() / 4).max(1).min(frames.len())..];
-    tail.iter().all(|f| f.penetration.is_some_and(|p| -p / unit <= 0.5 * DRIFT_THRESHOLD + rounding))
+    last_quarter(frames, 1).iter().all(|f| f.penetration.is_some_and(|p| -p / unit <= 0.5 * DRIFT_THRESHOLD + rounding))
 }
 
 /// Whether the last quarter of a trajectory goes back and forth (its net
@@ -329,7 +339,7 @@ fn on_surfaces(frames: &[FrameRecord], radii: &[f64; 3], rounding: f64) -> bool 
 /// along a ramp in steps of the float spacing far from the origin, which the
 /// jitter formula also scores.
 fn back_and_forth(frames: &[FrameRecord]) -> bool {
-    let tail = &frames[frames.len() - (frames.len() / 4).max(2).min(frames.len())..];
+    let tail = last_quarter(frames, 2);
     let at = |f: &FrameRecord| nalgebra::Vector3::from(f.position);
     let path: f64 = tail.windows(2).map(|w| (at(&w[1]) - at(&w[0])).norm()).sum();
     let net = (at(&tail[tail.len() - 1]) - at(&tail[0])).norm();
