@@ -51,8 +51,14 @@ pub enum Error {
         /// Why the first was rejected (with its file and line for OBJ input).
         first: Box<Error>,
     },
-    /// A radius that is zero, negative, NaN or infinite.
-    #[error("radius along {axis} must be positive and finite, got {}", Num(*.value))]
+    /// A radius that is zero, negative, NaN or infinite, or that the
+    /// precision cannot hold as a normal number with a finite inverse
+    /// ([`crate::geom::Ellipsoid::new`]).
+    #[error(
+        "radius along {axis} must be positive and finite, and a normal number of this precision (and of f64) whose \
+         inverse is finite, got {}",
+        Num(*.value)
+    )]
     InvalidRadius {
         /// `x`, `y` or `z`.
         axis: char,

@@ -1114,12 +1114,24 @@ fn world_refuses_a_used_vertex_beyond_the_backends_range_and_ignores_an_unused_o
     let used = std::sync::Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [1, 3, 2]]).unwrap());
     match World::<f32>::new(used.clone()) {
         Err(Error::InvalidArgument { what, message }) => {
-            assert_eq!(what, "vertex 3 (counted from 0: an OBJ file's `v` statement 4)");
+            assert_eq!(what, "vertex 3 (counted from 0) of triangle 1");
             assert!(message.contains("overflows"), "{message}");
         }
         other => panic!("{:?}", other.map(|w| w.mesh().len())),
     }
     assert!(World::<f64>::new(used).is_ok());
+    // Read from OBJ text, the error names the file and the first face
+    // that uses the vertex (a review, session 36: it named neither).
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n# far\nv 0 0 1e39\nf 1 2 3\n\nf 1 2 4\n";
+    let obj = std::sync::Arc::new(TriangleMesh::from_obj_str(text, std::path::Path::new("far.obj")).unwrap());
+    match World::<f32>::new(obj) {
+        Err(Error::Obj { path, line, message }) => {
+            assert_eq!((path.to_str(), line), (Some("far.obj"), 8), "{message}");
+            assert!(message.contains("vertex 4 (its `v` statement, counted from 1)"), "{message}");
+            assert!(message.contains("overflows this precision"), "{message}");
+        }
+        other => panic!("{:?}", other.map(|w| w.mesh().len())),
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -1253,13 +1265,16 @@ fn a_mesh_too_large_or_too_small_for_the_labs_f32_scene_values_says_so() {
     use sweepslide::lab::Scene;
     let dir = std::env::temp_dir().join(format!("sweepslide-scale-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for (name, h) in [("huge", 1e170), ("tiny", 1e-300)] {
+    // A default radius subnormal in `f32` (a mesh `1e-40` across) was let
+    // through and refused as a radius the user had not given (a review,
+    // session 36).
+    for (name, h) in [("huge", 1e170), ("tiny", 1e-300), ("subnormal", 1e-40)] {
         let path = dir.join(format!("{name}.obj"));
         std::fs::write(&path, format!("v 0 0 0\nv {h} 0 0\nv 0 0 {h}\nf 1 2 3\n")).unwrap();
         match Scene::from_obj(&path) {
             Err(Error::InvalidArgument { what, message }) => {
                 assert!(what.ends_with(&format!("{name}.obj")), "{what}");
-                assert!(message.contains("beyond the `f32` numbers"), "{message}");
+                assert!(message.contains("beyond the normal `f32` numbers"), "{message}");
             }
             other => panic!("{name}: expected InvalidArgument, got {:?}", other.map(|s| s.name)),
         }

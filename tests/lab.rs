@@ -384,6 +384,11 @@ fn units_per_meter_sets_the_faithful_responses_eps_and_is_refused_where_eps_roun
         let out = run(bad, &[]);
         assert_eq!(out.status.code(), Some(2), "{bad}: {}", String::from_utf8_lossy(&out.stderr));
     }
+    // The robust response (the default) has no eps: the flag would change
+    // nothing, and is refused rather than ignored (a review, session 36).
+    let out = run("100", &[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && stderr.contains("no such constant"), "{stderr}");
     for (upm, rounds) in [("1e-300", "rounds to zero in f32"), ("1e300", "rounds to infinity in f32")] {
         let out = run(upm, &["--response", "linahan", "--precision", "f32"]);
         let stderr = String::from_utf8_lossy(&out.stderr);
@@ -748,7 +753,7 @@ fn random_search_over_meshes_reproduces_its_findings() {
     use sweepslide::lab::search::search;
     let Some(meshes) = shared_meshes() else { return };
     // A seed whose 25 trials include a mesh's findings.
-    let outcome = search(8, 25, 2, &meshes).unwrap();
+    let outcome = search(8, 25, 2, &meshes, &|_| {}).unwrap();
     let on_mesh_trials: usize = outcome.trials.iter().filter(|(f, _)| f.starts_with("mesh:")).map(|(_, n)| n).sum();
     assert!(on_mesh_trials > 0 && outcome.trials.values().sum::<usize>() == 25, "{:?}", outcome.trials);
     let findings = outcome.findings;
@@ -942,8 +947,8 @@ fn triangles_degenerate_in_the_runs_precision_are_noted() {
     let vertices =
         vec![[1e8, 0.0, 0.0], [1e8 + 1.0, 0.0, 0.0], [1e8, 0.0, 1.0], [0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
     let mesh = Arc::new(TriangleMesh::new(vertices, vec![[0, 2, 1], [3, 5, 4]]).unwrap());
-    assert_eq!(World::<f32>::new(mesh.clone()).unwrap().degenerate_in_backend(), 1);
-    assert_eq!(World::<f64>::new(mesh).unwrap().degenerate_in_backend(), 0);
+    assert_eq!(World::<f32>::new(mesh.clone()).unwrap().degenerate_in_backend(), [0]);
+    assert_eq!(World::<f64>::new(mesh).unwrap().degenerate_in_backend(), Vec::<u32>::new());
     let dir = std::env::temp_dir().join(format!("sweepslide-degenerate-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("collapsing.obj");
@@ -959,8 +964,12 @@ fn triangles_degenerate_in_the_runs_precision_are_noted() {
         let json = sweepslide(&[&args[..], &["--velocity=0,-0.1,0", "--frames", "3", "--json"]].concat());
         let v: serde_json::Value = serde_json::from_slice(&json.stdout).expect("one JSON object");
         let counted = v["degenerate_triangles"].as_u64().expect("the count is in the JSON");
-        let said = String::from_utf8_lossy(&out.stderr).contains("1 triangle(s) of the scene are degenerate");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let said = stderr.contains("1 triangle(s) of the scene are degenerate");
         assert_eq!(said, counted == 1, "{precision}: note and count disagree");
+        // The note names the triangle by its line (a review, session 36:
+        // it gave the count alone).
+        assert_eq!(said, stderr.contains("collapsing.obj:7"), "{stderr}");
         said
     };
     assert!(noted("f32"));
@@ -1006,7 +1015,7 @@ fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
     use sweepslide::lab::search::{FREEZE, FailureKind, search};
     // A seed whose 40 trials include a freeze and an ellipsoid's finding (a
     // change to the families or their draws may need another).
-    let outcome = search(8, 40, 1, &[]).unwrap();
+    let outcome = search(8, 40, 1, &[], &|_| {}).unwrap();
     assert_eq!(outcome.trials.values().sum::<usize>(), 40);
     assert!(outcome.trials.keys().all(|f| !f.starts_with("mesh:")), "{:?}", outcome.trials);
     assert!(outcome.ellipsoids > 0 && outcome.ellipsoids < 40);
@@ -1045,7 +1054,7 @@ fn a_mesh_that_collapses_at_a_search_offset_is_named() {
     let path = dir.join("specks.obj");
     std::fs::write(&path, "v 0 0 0\nv 1e-17 0 0\nv 0 1e-17 0\nv 1 1 1\nv 1.0000000000000002 1 1\nv 1 1.0000000000000002 1\nf 1 2 3\nf 4 5 6\n")
         .unwrap();
-    match search(1, 200, 2, std::slice::from_ref(&path)) {
+    match search(1, 200, 2, std::slice::from_ref(&path), &|_| {}) {
         Err(Error::InvalidArgument { what, message }) => {
             assert!(what.contains("specks.obj") && message.contains("1e4 radii"), "{what}: {message}");
         }
@@ -1053,6 +1062,41 @@ fn a_mesh_that_collapses_at_a_search_offset_is_named() {
     }
     let out = sweepslide(&["search", "--trials", "200", "--jobs", "2", "--meshes", dir.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A review (session 36): `search --meshes` ran a mesh whose faces it had
+/// skipped, and statements it had ignored, without a word, where `run` and
+/// `report` say both; and `--trials 18446744073709551615` built its whole
+/// plan before any run, until memory ran out. The search now passes each
+/// mesh's load notes on, and refuses a trial count beyond its cap.
+#[test]
+fn a_search_says_what_its_meshes_left_out_and_caps_its_trials() {
+    use std::cell::RefCell;
+    use sweepslide::Error;
+    use sweepslide::lab::search::{MAX_TRIALS, search};
+    let dir = std::env::temp_dir().join(format!("sweepslide-search-notes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("patchy.obj");
+    std::fs::write(&path, "o floor\nv -5 0 -5\nv 5 0 -5\nv -5 0 5\nv 5 0 5\nf 1 3 2\nf 1 1 2\nf 2 3 4\n").unwrap();
+    let notes = RefCell::new(Vec::new());
+    search(1, 1, 1, std::slice::from_ref(&path), &|line| notes.borrow_mut().push(line.to_string())).unwrap();
+    let notes = notes.into_inner().join("\n");
+    assert!(notes.contains("patchy.obj:7") && notes.contains("`o`"), "{notes}");
+    let out = sweepslide(&["search", "--trials", "1", "--jobs", "1", "--meshes", dir.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && stderr.contains("patchy.obj:7"), "{stderr}");
+    for trials in [0, MAX_TRIALS + 1] {
+        match search(1, trials, 1, &[], &|_| {}) {
+            Err(Error::InvalidArgument { message, .. }) => {
+                assert!(message.contains("1 to 1000000 trials"), "{message}")
+            }
+            other => panic!("{trials} trials: {:?}", other.map(|o| o.trials)),
+        }
+    }
+    let out = sweepslide(&["search", "--trials", "18446744073709551615"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && stderr.contains("1 to 1000000 trials"), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

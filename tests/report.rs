@@ -368,6 +368,20 @@ fn csv_quotes_odd_scene_names_and_inconsistent_runs_are_refused() {
     sweepslide::report::write_runs(&out, &runs).unwrap();
     let e = sweepslide::report::read_runs(&out).expect_err("inconsistent counts").to_string();
     assert!(e.contains("record 0") && e.contains("entered from behind"), "{e}");
+    // A precision the lab does not know, or a result in another precision
+    // than its entry's: refused (a review, session 36: merged and rendered).
+    let first = runs.records[0].outcome.as_mut().expect("the run succeeds");
+    first.back_face_frames = 0;
+    let last = runs.records.len() - 1;
+    runs.records[last].entry.precision = "f17".into();
+    sweepslide::report::write_runs(&out, &runs).unwrap();
+    let e = sweepslide::report::read_runs(&out).expect_err("unknown precision").to_string();
+    assert!(e.contains(&format!("record {last}")) && e.contains("f17"), "{e}");
+    let known = if runs.records[last].outcome.as_ref().unwrap().precision == "f32" { "f64" } else { "f32" };
+    runs.records[last].entry.precision = known.into();
+    sweepslide::report::write_runs(&out, &runs).unwrap();
+    let e = sweepslide::report::read_runs(&out).expect_err("precisions differ").to_string();
+    assert!(e.contains(&format!("record {last}")) && e.contains("its entry in"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -600,6 +600,27 @@ fn zero_velocity_leaves_position_unchanged<T: Real>() {
     }
 }
 
+/// A push whose squared length in radii underflows `f32` (`1e-30`, at a
+/// coordinate of 0 where it would show) moves as a zero one, and says so;
+/// the robust response ended it as `Blocked` in free space (a review,
+/// session 36). One just above the underflow still moves, freely.
+#[test]
+fn robust_takes_a_push_too_short_to_measure_as_zero() {
+    let s = scene("floor");
+    let world = World::<f32>::new(s.mesh.clone()).expect("the mesh fits the backend");
+    let body = Ellipsoid::<f32>::new(s.radii).unwrap();
+    let p = v::<f32>([0.0, 5.0, 0.0]);
+    let opts = MoveOptions::new(Response::Robust);
+    let tiny = v::<f32>([1e-30, 0.0, 0.0]);
+    for gravity in [None, Some(&tiny)] {
+        let m = move_body(&world, &body, &p, &tiny, gravity, &opts).unwrap();
+        assert_eq!(f64s(&m.position), [0.0, 5.0, 0.0]);
+        assert_eq!((m.trace.stop, m.trace.iterations), (StopReason::ZeroVelocity, 0));
+    }
+    let m = move_body(&world, &body, &p, &v::<f32>([1e-21, 0.0, 0.0]), None, &opts).unwrap();
+    assert!(m.position.x > 0.0 && m.trace.stop == StopReason::Free, "{:?}", m.trace);
+}
+
 /// NaN or infinite position, velocity or gravity: `Error::NonFinite` naming
 /// the argument, for every response.
 fn non_finite_input_is_an_error<T: Real>() {

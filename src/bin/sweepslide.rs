@@ -35,13 +35,13 @@ enum Command {
     /// failure.
     Search {
         /// Seed of the search.
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
         seed: u64,
         /// Number of random scenes (at least 1); each runs 3 responses x {f32, f64}.
-        #[arg(long, default_value_t = 200)]
+        #[arg(long, default_value_t = 200, allow_negative_numbers = true)]
         trials: usize,
         /// Worker threads (default: one per core).
-        #[arg(long, default_value_t = 0)]
+        #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
         jobs: usize,
         /// Print the findings as JSON lines.
         #[arg(long)]
@@ -69,7 +69,7 @@ struct ReportArgs {
     #[arg(long, default_value = "report")]
     out: PathBuf,
     /// Worker threads (default: one per core).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     jobs: usize,
     /// Directory of OBJ meshes to add as scenes (default: ../shared/meshes when it exists).
     #[arg(long)]
@@ -78,7 +78,7 @@ struct ReportArgs {
     #[arg(long)]
     cases: Option<PathBuf>,
     /// Run only the K-th of N slices of the matrix (1-based), e.g. 2/8; merge the shards with `sweepslide merge`.
-    #[arg(long, value_parser = parse_shard)]
+    #[arg(long, value_parser = parse_shard, allow_hyphen_values = true)]
     shard: Option<(usize, usize)>,
 }
 
@@ -122,7 +122,7 @@ struct RunArgs {
     #[arg(long, default_value = "f64", value_parser = parse_precision)]
     precision: Precision,
     /// Number of frames (default: the scene's).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     frames: Option<usize>,
     /// Start position X,Y,Z.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_vec3)]
@@ -147,7 +147,7 @@ struct RunArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = parse_positive)]
     units_per_meter: Option<f64>,
     /// Seed of seeded scenes and random-walk motion.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     seed: u64,
     /// Print one JSON object instead of a summary.
     #[arg(long)]
@@ -276,6 +276,16 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
         scene = scene.with_radii(r);
     }
     if let Some(u) = args.units_per_meter {
+        // Given for the robust response it would change nothing, silently
+        // (a review, session 36).
+        if matches!(args.response, ResponseArg::Robust) {
+            return Err(Error::InvalidArgument {
+                what: "--units-per-meter".into(),
+                message: "it sets the faithful responses' eps (Fauerby's veryCloseDistance); the robust response has \
+                          no such constant: pass --response fauerby or linahan, or leave it out"
+                    .into(),
+            });
+        }
         scene.units_per_meter = u;
     }
     if let Some(o) = args.offset {
@@ -418,12 +428,19 @@ fn run_command(args: &RunArgs) -> Result<(), Failure> {
     if let Some(path) = &args.trace {
         write_trace(path, &out)?;
     }
-    if out.result.degenerate_triangles > 0 {
+    if !out.degenerate.is_empty() {
         eprintln!(
             "note: {} triangle(s) of the scene are degenerate in {} (zero area once rounded): they collided as the \
-             segments or points they became",
-            out.result.degenerate_triangles, args.precision
+             segments or points they became:",
+            out.degenerate.len(),
+            args.precision
         );
+        for &t in out.degenerate.iter().take(5) {
+            eprintln!("  {}", cfg.scene.mesh.input_name(t));
+        }
+        if out.degenerate.len() > 5 {
+            eprintln!("  ... and {} more", out.degenerate.len() - 5);
+        }
     }
     let r = &out.result;
     if args.json {
@@ -629,10 +646,10 @@ fn search_command(
     json: bool,
     meshes: Option<&std::path::Path>,
 ) -> Result<(), Failure> {
-    if trials == 0 {
+    if !(1..=sweepslide::lab::search::MAX_TRIALS).contains(&trials) {
         return Err(Failure(Error::InvalidArgument {
             what: "--trials".into(),
-            message: "a search needs at least one trial".into(),
+            message: format!("a search runs 1 to {} trials, got {trials}", sweepslide::lab::search::MAX_TRIALS),
         }));
     }
     let meshes = match meshes {
@@ -648,7 +665,7 @@ fn search_command(
             found
         }
     };
-    let outcome = sweepslide::lab::search::search(seed, trials, jobs, &meshes)?;
+    let outcome = sweepslide::lab::search::search(seed, trials, jobs, &meshes, &|line| eprintln!("{line}"))?;
     for f in &outcome.findings {
         if json {
             out!("{}", serde_json::to_string(f).expect("findings serialise"));

@@ -264,6 +264,10 @@ pub struct RunOutput {
     pub result: RunResult,
     /// One record per frame.
     pub frames: Vec<FrameRecord>,
+    /// The triangles degenerate in the run's precision
+    /// ([`World::degenerate_in_backend`]; [`RunResult::degenerate_triangles`]
+    /// counts them), for a user to be told which.
+    pub degenerate: Vec<u32>,
 }
 
 /// The contact decisions of a move: triangle and feature of each contact.
@@ -325,6 +329,23 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
             message: format!("a run has 1 to {MAX_FRAMES} frames, got {frames}"),
         });
     }
+    // A finite input that `T` cannot hold is named as such (as a
+    // non-finite position or push it was reported as given infinite: a
+    // review, session 36).
+    let scripted = match &scene.motion {
+        super::scenes::Motion::Scripted { velocities } => velocities.as_slice(),
+        _ => &[],
+    };
+    let inputs = [("start", &scene.start), ("gravity", &scene.gravity), ("velocity", &scene.velocity)];
+    let inputs = inputs.into_iter().chain(scripted.iter().map(|v| ("a scripted velocity", v)));
+    for (what, v) in inputs {
+        if let Some(x) = v.iter().find(|x| x.is_finite() && !T::from_f64(**x).is_finite()) {
+            return Err(Error::InvalidArgument {
+                what: what.into(),
+                message: format!("{x:e} rounds to infinity in {}", T::name()),
+            });
+        }
+    }
     let world = World::<T>::new(scene.mesh.clone())?;
     let body = Ellipsoid::<T>::new(scene.radii)?;
     let (reference, ref_body) = R::with_bits(ref_bits, || -> Result<_, Error> {
@@ -351,10 +372,6 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
     let gravity: Vec3<T> = vec3(scene.gravity[0], scene.gravity[1], scene.gravity[2]);
     let has_gravity = scene.gravity != [0.0; 3];
     // The first push (a scripted case may start at rest and move later).
-    let scripted = match &scene.motion {
-        super::scenes::Motion::Scripted { velocities } => velocities.as_slice(),
-        _ => &[],
-    };
     let first_push = std::iter::once(&scene.velocity).chain(scripted).find(|v| **v != [0.0; 3]);
     if first_push.is_none() && !has_gravity {
         return Err(Error::ZeroVelocity);
@@ -475,6 +492,7 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
         let v = first_push.unwrap_or(&scene.gravity);
         (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
     };
+    let degenerate = world.degenerate_in_backend();
     let result = RunResult {
         scene: scene.name.clone(),
         response: cfg.response.name().to_string(),
@@ -505,10 +523,10 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
         snag: scene.ideal.and_then(|ideal| snag_ratio(&start, &p, ideal, frames)),
         drift: scene.ideal.and_then(|ideal| drift(&positions, ideal, scene.radii)),
         ns_per_move: ns as f64 / moves.max(1) as f64,
-        degenerate_triangles: world.degenerate_in_backend(),
+        degenerate_triangles: degenerate.len(),
         units_per_meter: scene.units_per_meter,
     };
-    Ok(RunOutput { result, frames: records })
+    Ok(RunOutput { result, frames: records, degenerate })
 }
 
 /// The most frames one run plays (every frame's position and record is

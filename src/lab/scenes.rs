@@ -620,12 +620,16 @@ impl Scene {
             let f = x as f32;
             f.is_finite() && (f != 0.0 || x == 0.0)
         };
-        if ![0.02 * diag, 0.0004 * diag, b.max.y + 0.04 * diag].into_iter().all(in_f32) {
+        // The radius must be a normal `f32` number, as a body's radii must
+        // be in `f32` (a subnormal one was refused as a radius the user had
+        // not given: a review, session 36).
+        let radius_in_f32 = ((0.02 * diag) as f32).is_normal();
+        if !(radius_in_f32 && [0.0004 * diag, b.max.y + 0.04 * diag].into_iter().all(in_f32)) {
             return Err(Error::InvalidArgument {
                 what: path.display().to_string(),
                 message: format!(
                     "the lab's default scene for this mesh (a sphere of 2% of its bounding box's diagonal, {}) \
-                     needs values beyond the `f32` numbers that lab scenes are made of",
+                     needs values beyond the normal `f32` numbers that lab scenes are made of",
                     crate::error::Num(diag)
                 ),
             });

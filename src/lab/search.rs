@@ -356,17 +356,42 @@ fn confirm_jitter(cfg: &RunConfig) -> Result<bool, Error> {
     Ok(super::runner::run(&longer)?.result.jitter > JITTER_THRESHOLD)
 }
 
+/// The most trials one search runs: a million trials are six million
+/// runs, days on two cores.
+pub const MAX_TRIALS: usize = 1_000_000;
+
+/// Trials drawn, run and judged together: a trial holds its scene (a
+/// messy floor's mesh among them, tens of kilobytes), so a search keeps
+/// one chunk's scenes at a time, whatever its trial count.
+const CHUNK_TRIALS: usize = 1_000;
+
 /// Runs `trials` random trials from `seed` on `jobs` threads and returns
 /// every failure, in trial order. The trials draw from nine built-in scene
 /// families and, where `meshes` names any OBJ files, a tenth: bodies moved
 /// over those meshes (without meshes the draws are those of the nine
 /// alone, so a seed finds what it found before meshes were offered).
+/// `note` gets each mesh file's load notes
+/// ([`crate::world::TriangleMesh::load_notes`]: skipped faces, ignored
+/// statements) as it is read, before any run.
 ///
 /// # Errors
-/// A mesh that cannot be loaded, a scene that cannot be built at its
-/// random offset, a run that fails (naming its command), or a thread-pool
-/// failure.
-pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Result<Outcome, Error> {
+/// [`Error::InvalidArgument`] for a trial count outside `1..=`
+/// [`MAX_TRIALS`]; a mesh that cannot be loaded, a scene that cannot be
+/// built at its random offset, a run that fails (naming its command), or
+/// a thread-pool failure.
+pub fn search(
+    seed: u64,
+    trials: usize,
+    jobs: usize,
+    meshes: &[PathBuf],
+    note: &dyn Fn(&str),
+) -> Result<Outcome, Error> {
+    if !(1..=MAX_TRIALS).contains(&trials) {
+        return Err(Error::InvalidArgument {
+            what: "trials".into(),
+            message: format!("a search runs 1 to {MAX_TRIALS} trials, got {trials}"),
+        });
+    }
     let meshes = meshes
         .iter()
         .map(|path| {
@@ -379,6 +404,7 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
                 });
             }
             let scene = Scene::from_obj(path)?;
+            scene.mesh.load_notes(&path.display().to_string()).iter().for_each(|l| note(l));
             let world = World::new(scene.mesh.clone())?;
             Ok(SearchMesh { scene, world, path: path.clone() })
         })
@@ -387,35 +413,47 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
         ["corner", "wedge", "crease", "fold", "slot", "dead-end", "tessellated-floor", "tilted-floor", "messy-floor"];
     let count = families.len() as u64 + u64::from(!meshes.is_empty());
     let mut rng = Rng::new(seed);
-    let mut plan = Vec::new();
-    let mut tried = Outcome { findings: Vec::new(), trials: BTreeMap::new(), ellipsoids: 0 };
-    for _ in 0..trials {
-        let family = (rng.next_u64() % count) as usize;
-        let t = match families.get(family) {
-            Some(family) => builtin_trial(&mut rng, family)?,
-            None => {
-                let mesh = &meshes[(rng.next_u64() % meshes.len() as u64) as usize];
-                mesh_trial(&mut rng, mesh)?
-            }
-        };
-        *tried.trials.entry(t.family.clone()).or_default() += 1;
-        tried.ellipsoids += usize::from(t.ellipsoid);
-        for precision in [Precision::F32, Precision::F64] {
-            for response in Response::ALL {
-                plan.push((
-                    t.clone(),
-                    RunConfig { scene: t.scene.clone(), response, detection: None, precision, seed: t.seed },
-                ));
+    let mut outcome = Outcome { findings: Vec::new(), trials: BTreeMap::new(), ellipsoids: 0 };
+    let mut drawn = 0;
+    while drawn < trials {
+        let chunk = CHUNK_TRIALS.min(trials - drawn);
+        let mut plan = Vec::with_capacity(chunk * 2 * Response::ALL.len());
+        for _ in 0..chunk {
+            let family = (rng.next_u64() % count) as usize;
+            let t = match families.get(family) {
+                Some(family) => builtin_trial(&mut rng, family)?,
+                None => {
+                    let mesh = &meshes[(rng.next_u64() % meshes.len() as u64) as usize];
+                    mesh_trial(&mut rng, mesh)?
+                }
+            };
+            *outcome.trials.entry(t.family.clone()).or_default() += 1;
+            outcome.ellipsoids += usize::from(t.ellipsoid);
+            for precision in [Precision::F32, Precision::F64] {
+                for response in Response::ALL {
+                    plan.push((
+                        t.clone(),
+                        RunConfig { scene: t.scene.clone(), response, detection: None, precision, seed: t.seed },
+                    ));
+                }
             }
         }
+        judge(&plan, jobs, &mut outcome.findings)?;
+        drawn += chunk;
     }
+    Ok(outcome)
+}
+
+/// Runs a chunk's `plan` (each trial's runs, every response of one
+/// precision after another) and adds its failures to `findings`, in the
+/// plan's order.
+fn judge(plan: &[(Trial, RunConfig)], jobs: usize, findings: &mut Vec<Finding>) -> Result<(), Error> {
     let configs: Vec<RunConfig> = plan.iter().map(|(_, c)| c.clone()).collect();
     let outputs = run_all(&configs, jobs, &|_| {})?;
     // Each trial's drift in each precision, for every response (the plan
     // runs them one after the other): the others' least is the control of
     // a response's drift ([`drift_beyond_others`]).
     let drifts: Vec<Option<f64>> = outputs.iter().map(|o| o.as_ref().ok().and_then(|o| o.result.drift)).collect();
-    let mut findings = Vec::new();
     for (i, ((t, cfg), out)) in plan.iter().zip(outputs).enumerate() {
         // A run that fails is a defect of the search (its scenes are valid
         // input), reported with the command that reproduces it.
@@ -457,7 +495,7 @@ pub fn search(seed: u64, trials: usize, jobs: usize, meshes: &[PathBuf]) -> Resu
             found(FailureKind::Drift, drift);
         }
     }
-    Ok(Outcome { findings, ..tried })
+    Ok(())
 }
 
 #[cfg(test)]

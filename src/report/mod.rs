@@ -13,7 +13,7 @@ pub mod matrix;
 pub mod plots;
 
 use crate::Error;
-use crate::lab::{FrameRecord, RunResult, run_all};
+use crate::lab::{FrameRecord, Precision, RunResult, run_all};
 use matrix::{Entry, Group, MatrixInfo, configs};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -89,18 +89,32 @@ pub fn write_runs(dir: &Path, runs: &Runs) -> Result<(), Error> {
 /// [`Error::Io`] when it cannot be read, [`Error::InvalidArgument`] (with
 /// the line and column) when it is malformed, not UTF-8 included, or when
 /// a run counts more frames entered from behind than penetrating frames
-/// (no run writes that; the counts that subtract them would wrap).
+/// (no run writes that; the counts that subtract them would wrap), names a
+/// precision the lab does not know, or holds a result of another precision
+/// than its entry's.
 pub fn read_runs(dir: &Path) -> Result<Runs, Error> {
     let path = dir.join("runs.json");
     let bytes = std::fs::read(&path).map_err(|e| io(&path, e))?;
     let bad = |message: String| Error::InvalidArgument { what: path.display().to_string(), message };
     let runs: Runs = serde_json::from_slice(&bytes).map_err(|e| bad(e.to_string()))?;
-    let inconsistent =
-        runs.records.iter().enumerate().find_map(|(k, r)| {
-            r.outcome.as_ref().ok().filter(|o| o.back_face_frames > o.penetrating_frames).map(|_| k)
-        });
+    // A precision the lab does not know, or a result of another precision
+    // than its entry's, was merged and rendered without a word (a review,
+    // session 36).
+    let inconsistent = runs.records.iter().enumerate().find_map(|(k, r)| {
+        if let Err(e) = Precision::parse(&r.entry.precision) {
+            return Some(format!("record {k}: {e}"));
+        }
+        let o = r.outcome.as_ref().ok()?;
+        if o.precision != r.entry.precision {
+            Some(format!("record {k}: its result is in `{}`, its entry in `{}`", o.precision, r.entry.precision))
+        } else if o.back_face_frames > o.penetrating_frames {
+            Some(format!("record {k}: more frames entered from behind than penetrating frames"))
+        } else {
+            None
+        }
+    });
     match inconsistent {
-        Some(k) => Err(bad(format!("record {k}: more frames entered from behind than penetrating frames"))),
+        Some(message) => Err(bad(message)),
         None => Ok(runs),
     }
 }

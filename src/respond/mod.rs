@@ -167,7 +167,10 @@ pub enum StopReason {
     Blocked,
     /// The robust response used its whole sweep budget.
     IterationCap,
-    /// Nothing to do: zero velocity.
+    /// Nothing to do: zero velocity and gravity, or, for the robust
+    /// response, ones so short that their squared lengths in radii
+    /// underflow `T` (below about `3.7e-23` radii in `f32`, `2.2e-162` in
+    /// `f64`), which it cannot measure.
     ZeroVelocity,
 }
 
@@ -348,7 +351,11 @@ fn pass<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, w: Vec3<T>, options: &Mov
 /// returned unchanged except that the robust response still pushes a body
 /// that starts embedded out of the geometry, and one closer to a triangle
 /// than half its padding out to its skin where that push restores it (a
-/// body left there by rounding, or placed there).
+/// body left there by rounding, or placed there). The robust response
+/// takes a velocity or gravity whose squared length in radii underflows
+/// `T` (shorter than about `3.7e-23` radii in `f32`, `2.2e-162` in `f64`)
+/// as zero: it cannot measure it (its trace's stop says
+/// [`StopReason::ZeroVelocity`] where neither pass is left).
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] for options out of range

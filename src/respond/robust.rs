@@ -607,6 +607,12 @@ fn push_out<T: Real>(
 pub(crate) fn slide<T: Real>(frame: &mut Frame<'_, T>, mut p: Vec3<T>, w: Vec3<T>, opts: &RobustOptions) -> Vec3<T> {
     let zero = T::zero();
     let w_len = norm(&w);
+    // A pass whose squared length underflows `T` is too short to measure,
+    // and moves as a zero one ([`crate::respond::move_body`]; a review,
+    // session 36: it ended as `Blocked`).
+    if w_len.is_zero() {
+        return p;
+    }
     let negligible = T::c(opts.feasible_ulps * T::unit_roundoff()) * &w_len;
     let mut time_left = T::one();
     frame.planes.clear();

@@ -53,7 +53,10 @@ pub const INTERNAL_EDGE_DEGREES: f64 = 5.0;
 
 impl TriangleMesh {
     /// A mesh from vertex positions and triangles (indices into
-    /// `vertices`), rejecting the first invalid triangle.
+    /// `vertices`), rejecting the first invalid triangle. Only the vertices
+    /// of triangles are checked: one that no triangle uses is kept as given
+    /// (in [`TriangleMesh::vertices`], NaN included) and never read by a
+    /// query.
     ///
     /// # Errors
     /// [`Error::VertexIndexOutOfRange`], [`Error::NonFinite`],
@@ -69,7 +72,9 @@ impl TriangleMesh {
     }
 
     /// A mesh from vertex positions and triangles that leaves out invalid
-    /// triangles and lists why in [`TriangleMesh::skipped`].
+    /// triangles and lists why in [`TriangleMesh::skipped`]. Vertices that
+    /// no triangle uses are kept unchecked, as [`TriangleMesh::new`] keeps
+    /// them.
     ///
     /// # Errors
     /// [`Error::EmptyMesh`] when no triangle is given,
@@ -332,6 +337,21 @@ impl TriangleMesh {
         self.inputs[t as usize] as usize
     }
 
+    /// Triangle `t` as a user gave it: `FILE:LINE` of its `f` statement
+    /// for a mesh read from OBJ text, `triangle N` (its input index, from
+    /// 0) otherwise.
+    ///
+    /// # Panics
+    /// If `t` is not below the mesh's [`TriangleMesh::len`].
+    #[must_use]
+    pub fn input_name(&self, t: u32) -> String {
+        let input = self.input_index(t);
+        match &self.source {
+            Some(s) => format!("{}:{}", s.path.display(), s.lines[input]),
+            None => format!("triangle {input}"),
+        }
+    }
+
     /// The input triangles that were left out, each with the reason, by
     /// their index in the input ([`TriangleMesh::input_index`]).
     #[must_use]
@@ -391,10 +411,13 @@ impl<T: Real> World<T> {
     /// nearest).
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] naming the first vertex of a triangle
-    /// with a coordinate beyond `T`'s range (above about `3.4e38` in
-    /// `f32`): rounded to infinity, it would make every query meaningless.
-    /// Vertices that no triangle uses are not checked.
+    /// A vertex of a triangle with a coordinate beyond `T`'s range (above
+    /// about `3.4e38` in `f32`): rounded to infinity, it would make every
+    /// query meaningless. The first such triangle's is named: for a mesh
+    /// read from OBJ text as [`Error::Obj`] with the file and its face's
+    /// line, otherwise as [`Error::InvalidArgument`] with the vertex and
+    /// the triangle's index in the input. Vertices that no triangle uses
+    /// are not checked.
     pub fn new(mesh: Arc<TriangleMesh>) -> Result<Self, Error> {
         let vertices = mesh.vertices.iter().map(from_f64).collect();
         Self::with_vertices(mesh, vertices)
@@ -405,16 +428,27 @@ impl<T: Real> World<T> {
     /// conversion slack against the mesh's own `f64` vertices.
     fn with_vertices(mesh: Arc<TriangleMesh>, vertices: Vec<Vec3<T>>) -> Result<Self, Error> {
         // Only the vertices of triangles matter (a file may list others).
+        let overflows = |i: &u32| !vertices[*i as usize].iter().all(Real::is_finite);
+        let first =
+            mesh.triangles.iter().enumerate().find_map(|(t, tri)| tri.iter().find(|i| overflows(i)).map(|&i| (t, i)));
+        if let Some((t, i)) = first {
+            let v = mesh.vertices[i as usize];
+            let message = format!("({:e}, {:e}, {:e}) overflows this precision", v.x, v.y, v.z);
+            let input = mesh.input_index(t as u32);
+            return Err(match &mesh.source {
+                Some(s) => Error::Obj {
+                    path: s.path.clone(),
+                    line: s.lines[input],
+                    message: format!("this face's vertex {} (its `v` statement, counted from 1) {message}", i + 1),
+                },
+                None => {
+                    Error::InvalidArgument { what: format!("vertex {i} (counted from 0) of triangle {input}"), message }
+                }
+            });
+        }
         let mut used = vec![false; vertices.len()];
         mesh.triangles.iter().flatten().for_each(|&i| used[i as usize] = true);
         let used = || (0..vertices.len()).filter(|&i| used[i]);
-        if let Some(i) = used().find(|&i| !vertices[i].iter().all(Real::is_finite)) {
-            let v = mesh.vertices[i];
-            return Err(Error::InvalidArgument {
-                what: format!("vertex {i} (counted from 0: an OBJ file's `v` statement {})", i + 1),
-                message: format!("({:e}, {:e}, {:e}) overflows this precision", v.x, v.y, v.z),
-            });
-        }
         let (given, rounded) = (&mesh.vertices, &vertices);
         let slack =
             used().flat_map(|i| (0..3).map(move |k| (rounded[i][k].to_f64() - given[i][k]).abs())).fold(0.0, f64::max);
@@ -422,22 +456,25 @@ impl<T: Real> World<T> {
         Ok(World { mesh, vertices, slack })
     }
 
-    /// How many triangles are degenerate once their vertices are rounded
-    /// into `T` (zero area or collinear, as [`TriangleMesh::new`] judges
-    /// them, from the rounded values): they still collide, as the segments
-    /// or points they became, but no longer as the triangles the mesh gave.
+    /// The triangles (mesh indices, ascending) that are degenerate once
+    /// their vertices are rounded into `T` (zero area or collinear, as
+    /// [`TriangleMesh::new`] judges them, from the rounded values): they
+    /// still collide, as the segments or points they became, but no longer
+    /// as the triangles the mesh gave. [`TriangleMesh::input_name`] names
+    /// each for a user.
     #[must_use]
-    pub fn degenerate_in_backend(&self) -> usize {
+    pub fn degenerate_in_backend(&self) -> Vec<u32> {
         // Without conversion slack every vertex is the mesh's own, and the
         // mesh keeps only valid triangles (every `f64` and wider run).
         if self.slack == 0.0 {
-            return 0;
+            return Vec::new();
         }
         let rounded = |i: u32| self.vertices[i as usize].map(|x| x.to_f64());
         let triangles = self.mesh.triangles.iter().enumerate();
         triangles
             .filter(|(k, t)| Triangle::new(rounded(t[0]), rounded(t[1]), rounded(t[2])).validate(*k).is_err())
-            .count()
+            .map(|(k, _)| k as u32)
+            .collect()
     }
 
     /// The same world in another backend `U`, converted from this world's
