@@ -44,6 +44,16 @@ macro_rules! impl_real_for_float {
             fn is_sign_negative(&self) -> bool {
                 <$t>::is_sign_negative(*self)
             }
+            #[inline]
+            fn next_toward(&self, up: bool) -> Self {
+                if !<$t>::is_finite(*self) {
+                    *self
+                } else if up {
+                    <$t>::next_up(*self)
+                } else {
+                    <$t>::next_down(*self)
+                }
+            }
             #[cfg(feature = "mpfr")]
             fn to_rug(&self) -> rug::Float {
                 rug::Float::with_val(<$t>::MANTISSA_DIGITS, *self)

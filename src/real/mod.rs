@@ -83,6 +83,11 @@ pub trait Real:
     /// semantics of Fauerby's bit-level inside-triangle test.
     fn is_sign_negative(&self) -> bool;
 
+    /// The next value of this precision above (`up`) or below: one ulp
+    /// away, exact (infinities and NaN stay as they are).
+    #[must_use]
+    fn next_toward(&self, up: bool) -> Self;
+
     /// The value converted exactly to an MPFR float at its own precision.
     #[cfg(feature = "mpfr")]
     fn to_rug(&self) -> rug::Float;

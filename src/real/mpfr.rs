@@ -210,6 +210,17 @@ impl<const BITS: u32> Real for Mpfr<BITS> {
     fn is_sign_negative(&self) -> bool {
         self.0.is_sign_negative()
     }
+    fn next_toward(&self, up: bool) -> Self {
+        let mut x = self.0.clone();
+        if x.is_finite() {
+            if up {
+                x.next_up();
+            } else {
+                x.next_down();
+            }
+        }
+        Mpfr(x)
+    }
     fn to_rug(&self) -> Float {
         self.0.clone()
     }

@@ -862,10 +862,129 @@ pub(crate) fn land<T: Real>(
     reach: f64,
     opts: &RobustOptions,
 ) -> Vec3<T> {
-    let world = frame.body.from_espace(p) + origin;
-    match final_rounding::<T>(frame.start_magnitude, reach + frame.trace.depenetration, opts) {
+    let travel = reach + frame.trace.depenetration;
+    let d = frame.body.from_espace(p);
+    let world = match rounding_walks::<T>(frame.start_magnitude, travel, opts) {
+        Some(rounding) => off_contacts(frame, &d, origin, rounding, opts),
+        None => d + origin,
+    };
+    match final_rounding::<T>(frame.start_magnitude, travel, opts) {
         None => world,
         Some(rounding) => land_checked(frame, world, origin, rounding, opts),
+    }
+}
+
+/// Two contact normals whose cross product's squared length exceeds this
+/// (`sin^2` of their angle: about 0.6 degrees) make a crease for
+/// [`off_contacts`].
+const CREASE_SIN_SQ: f64 = 1e-4;
+
+/// The final rounding's bound `R` ([`final_rounding`]) where it reaches a
+/// quarter of the least padding but not half of it, where the skin is
+/// checked after the rounding ([`land_checked`]); `None` elsewhere. There, rounded to nearest frame after
+/// frame, a body sliding along a crease can walk into it by rounding (each
+/// frame's step rounded the same way, up to `R` towards a wall), faster
+/// than the skin's restoring pushes, themselves rounded, carry it back
+/// out (a review, session 36: an ellipsoid `2.9e4` radii out in `f32`,
+/// pushed along the crease of a floor and a ceiling meeting at 22
+/// degrees, ended `2.9e-4` radii inside the ceiling every 40 frames).
+fn rounding_walks<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> Option<f64> {
+    let u = T::unit_roundoff();
+    let rounding = opts.rounding_ulps * u * (m + 2.0 * travel);
+    let least_pad = opts.max_padding.min((opts.position_ulps * m + opts.padding_ulps) * u);
+    (rounding >= 0.25 * least_pad && rounding < 0.5 * least_pad).then_some(rounding)
+}
+
+/// `origin + d` (world space), each coordinate rounded to one of its two
+/// neighbouring values of `T`: to nearest, unless the move's contacts
+/// ([`super::Trace::contacts`]) make a crease (two normals more than
+/// [`CREASE_SIN_SQ`] apart) and that moves the body towards the plane of
+/// one of them and another choice does not; then the choice nearest to `origin + d`
+/// of those that move it towards none, or, where every choice does, the
+/// one that moves it least towards the worst. Only a choice within the
+/// bound `rounding` (`R`, eSpace) of `origin + d` is taken, and only where
+/// every triangle within reach keeps half its padding there or its
+/// thinnest skin is thicker than the nearest's (one or two scans, in the
+/// frames that take another choice than the nearest): a triangle the
+/// body did not touch can lie nearer than `R` (a first version moved a
+/// coordinate by up to an ulp and carried a body into the far wall of a
+/// slot `8.8e-4` radii wider than itself). The rounding errors
+/// are measured as `(w - origin) - d`, whose first difference is exact
+/// where `w` and `origin` lie within a factor two of each other (Sterbenz)
+/// and is otherwise within `u |w|` of the one the bound allows.
+fn off_contacts<T: Real>(
+    frame: &mut Frame<'_, T>,
+    d: &Vec3<T>,
+    origin: &Vec3<T>,
+    rounding: f64,
+    opts: &RobustOptions,
+) -> Vec3<T> {
+    let nearest = d + origin;
+    let contacts = &frame.trace.contacts;
+    // Along one plane the skin's restoring push, along its normal, is not
+    // undone by the rounding; only between two planes (a crease, a
+    // corner) does it sit mostly across the steps the rounding keeps.
+    let crease = contacts.iter().enumerate().any(|(i, a)| {
+        contacts[i + 1..].iter().any(|b| norm_squared(&cross(&a.hit.normal, &b.hit.normal)) > T::c(CREASE_SIN_SQ))
+    });
+    if !crease {
+        return nearest;
+    }
+    let error = |w: &Vec3<T>| frame.body.to_espace(&((w - origin) - d));
+    // The most the rounding error `e` moves the body towards a contact's
+    // plane (negative: towards it).
+    let worst = |e: &Vec3<T>| {
+        contacts.iter().map(|c| dot(&c.hit.normal, e)).fold(None, |m: Option<T>, x| match m {
+            Some(m) if m <= x => Some(m),
+            _ => Some(x),
+        })
+    };
+    let e0 = error(&nearest);
+    let Some(w0) = worst(&e0) else { return nearest };
+    if !(w0 < T::zero()) {
+        return nearest;
+    }
+    let bound_sq = T::c(rounding * rounding);
+    let mut best = (w0.clone(), norm_squared(&e0), nearest.clone());
+    for mask in 1..8u8 {
+        let flips = |i: usize| mask & (1 << i) != 0;
+        if (0..3).any(|i| flips(i) && e0[i].is_zero()) {
+            continue;
+        }
+        let w =
+            Vec3::from_fn(|i, _| if flips(i) { nearest[i].next_toward(e0[i] < T::zero()) } else { nearest[i].clone() });
+        let e = error(&w);
+        if !(norm_squared(&e) <= bound_sq) {
+            continue;
+        }
+        let Some(we) = worst(&e) else { continue };
+        let clear = !(we < T::zero());
+        let best_clear = !(best.0 < T::zero());
+        let better = match (clear, best_clear) {
+            (true, false) => true,
+            (true, true) => norm_squared(&e) < best.1,
+            (false, false) => we > best.0,
+            (false, true) => false,
+        };
+        if better {
+            best = (we, norm_squared(&e), w);
+        }
+    }
+    // The choice may approach a triangle it did not touch by up to `R`:
+    // kept where every triangle within reach keeps half its padding there
+    // ([`scan_resting`]), or else where it measures better than the
+    // nearest ([`Nearest::beats`]).
+    if best.2 == nearest {
+        return nearest;
+    }
+    let at = |w: &Vec3<T>| frame.body.to_espace(&(w - origin));
+    let (q, q0) = (at(&best.2), at(&nearest));
+    match scan_resting(frame, &q, opts) {
+        Some(near) if near.short() => match scan_resting(frame, &q0, opts) {
+            Some(near0) if !near.beats(&near0) => nearest,
+            _ => best.2,
+        },
+        _ => best.2,
     }
 }
 

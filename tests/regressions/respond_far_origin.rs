@@ -335,3 +335,47 @@ fn robust_f32_fast_frame_rests_outside_a_ramp() {
     let pen = penetration(&world, body.radii(), &m.position).unwrap();
     assert!(pen <= 0.0, "inside by {pen:e} at {:?}", f64s(&m.position));
 }
+
+/// A review (R36a, thirty-sixth session): an upright ellipsoid walked at
+/// 1.5 m/s (240 Hz, gravity as a second pass) into the wedge between a
+/// floor and the sloping underside of a model (the teapot's, scaled to
+/// 100 m), `1e4` from the origin in `f32` (`2.9e4` radii in eSpace). The
+/// two planes meet at 22 degrees in eSpace. Each frame's slide along their
+/// crease was rounded to the same neighbouring `f32` step, `3.5e-4` radii
+/// towards the apex, and the skin's restoring pushes, mostly across the
+/// coordinates' spacing, were rounded away: the body ended up to `1e-4`
+/// radii inside the ceiling once every 40 frames or so. The final
+/// rounding in a crease now never moves the body towards a plane it
+/// touched where another neighbouring value does not.
+#[test]
+fn robust_f32_walking_into_a_far_wedge_is_not_rounded_into_its_ceiling() {
+    use std::sync::Arc;
+    use sweepslide::world::TriangleMesh;
+    let corners: [[f32; 3]; 6] = [
+        [9983.503, 2.199254, 9974.773],
+        [9984.035, 0.974_121_87, 9975.797],
+        [9980.473, 0.974_121_87, 9977.988],
+        [9800.0, 0.0, 9800.0],
+        [10200.0, 0.0, 10200.0],
+        [10200.0, 0.0, 9800.0],
+    ];
+    let vertices = corners.iter().map(|c| c.map(f64::from)).collect();
+    let mesh = Arc::new(TriangleMesh::new(vertices, vec![[0, 1, 2], [3, 4, 5]]).unwrap());
+    let world = World::<f32>::new(mesh).unwrap();
+    let radii = [0.35, 0.9, 0.35];
+    let body = Ellipsoid::<f32>::new(radii).unwrap();
+    let velocity = [f64::from(f32::from_bits(0x3b08_03f9)), 0.0, f64::from(f32::from_bits(0x3bc1_2dbb))];
+    let gravity = v::<f32>([0.0, f64::from(f32::from_bits(0xba5f_3b64)), 0.0]);
+    // 40 frames back from where the review's body was, in the open part
+    // of the wedge, 2 mm higher.
+    let mut p = v::<f32>([9982.735 - 40.0 * velocity[0], 0.9025, 9975.6035 - 40.0 * velocity[2]]);
+    let options = MoveOptions::new(Response::Robust);
+    let mut deepest = f64::NEG_INFINITY;
+    for frame in 0..400 {
+        p = move_body(&world, &body, &p, &v(velocity), Some(&gravity), &options)
+            .unwrap_or_else(|e| panic!("frame {frame}: {e}"))
+            .position;
+        deepest = deepest.max(penetration(&world, &v(radii), &p).unwrap_or(f64::NEG_INFINITY));
+    }
+    assert!(deepest < 0.0, "inside by {deepest:e} (eSpace)");
+}
