@@ -920,6 +920,12 @@ fn off_contacts<T: Real>(
     opts: &RobustOptions,
 ) -> Vec3<T> {
     let nearest = d + origin;
+    // A body the rounding returns to its start does not walk: the nearest
+    // keeps it at rest (choosing another value there, a first version set
+    // bodies at rest in creases creeping along them: a review).
+    if nearest == *origin {
+        return nearest;
+    }
     let contacts = &frame.trace.contacts;
     // Along one plane the skin's restoring push, along its normal, is not
     // undone by the rounding; only between two planes (a crease, a

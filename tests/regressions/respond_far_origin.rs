@@ -379,3 +379,34 @@ fn robust_f32_walking_into_a_far_wedge_is_not_rounded_into_its_ceiling() {
     }
     assert!(deepest < 0.0, "inside by {deepest:e} (eSpace)");
 }
+
+/// The review of R36a's fix (R36c): a sphere pressed straight into the
+/// crease of a randomly rotated 90-degree wedge, its faces split into
+/// triangles 3.7 radii across, `9.75e3` radii out in `f32`, comes to rest.
+/// The fix's first version chose another neighbouring value even where
+/// rounding to nearest returned the body to its start, and set it
+/// creeping along the crease, `4.3e-5` radii a frame, without end.
+#[test]
+fn robust_f32_pressed_into_a_far_crease_comes_to_rest() {
+    use std::sync::Arc;
+    use sweepslide::world::TriangleMesh;
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/regressions/data/creep-corner.obj");
+    let world = World::<f32>::new(Arc::new(TriangleMesh::from_obj_file(&path).unwrap())).unwrap();
+    let body = Ellipsoid::<f32>::new([1.0; 3]).unwrap();
+    let velocity = v::<f32>([-0.005176280027014394, -0.0030110471946237357, 0.007028324247549164]);
+    let gravity = v::<f32>([-0.004170090028134843, -0.002425745480347622, 0.005662125060128937]);
+    let mut p = v::<f32>([-1858.7474578902682, 9463.68512968848, 1460.3855154861142]);
+    let options = MoveOptions::new(Response::Robust);
+    let mut last = Vec::new();
+    for frame in 0..400 {
+        p = move_body(&world, &body, &p, &velocity, Some(&gravity), &options)
+            .unwrap_or_else(|e| panic!("frame {frame}: {e}"))
+            .position;
+        assert!(penetration(&world, &v([1.0; 3]), &p).unwrap_or(f64::NEG_INFINITY) < 0.0, "frame {frame} inside");
+        if frame >= 300 {
+            last.push(f64s(&p).map(f64::to_bits));
+        }
+    }
+    last.dedup();
+    assert_eq!(last.len(), 1, "still moving over the last 100 frames: {:?} -> {:?}", last.first(), last.last());
+}
