@@ -880,18 +880,17 @@ pub(crate) fn land<T: Real>(
 const CREASE_SIN_SQ: f64 = 1e-4;
 
 /// The final rounding's bound `R` ([`final_rounding`]) where it reaches a
-/// quarter of the least padding but not half of it, where the skin is
-/// checked after the rounding ([`land_checked`]); `None` elsewhere. There, rounded to nearest frame after
-/// frame, a body sliding along a crease can walk into it by rounding (each
-/// frame's step rounded the same way, up to `R` towards a wall), faster
-/// than the skin's restoring pushes, themselves rounded, carry it back
-/// out (a review, session 36: an ellipsoid `2.9e4` radii out in `f32`,
-/// pushed along the crease of a floor and a ceiling meeting at 22
-/// degrees, ended `2.9e-4` radii inside the ceiling every 40 frames).
+/// quarter of the least padding but not half of it (from half on, the
+/// skin is checked after the rounding: [`land_checked`]); `None`
+/// elsewhere. There, rounded to nearest frame after frame, a body sliding
+/// along a crease can walk into it by rounding (each frame's step rounded
+/// the same way, up to `R` towards a wall), faster than the skin's
+/// restoring pushes, themselves rounded, carry it back out (a review,
+/// session 36: an ellipsoid `2.9e4` radii out in `f32`, pushed along the
+/// crease of a floor and a ceiling meeting at 22 degrees, ended `2.9e-4`
+/// radii inside the ceiling every 40 frames).
 fn rounding_walks<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> Option<f64> {
-    let u = T::unit_roundoff();
-    let rounding = opts.rounding_ulps * u * (m + 2.0 * travel);
-    let least_pad = opts.max_padding.min((opts.position_ulps * m + opts.padding_ulps) * u);
+    let (rounding, least_pad) = rounding_and_least_pad::<T>(m, travel, opts);
     (rounding >= 0.25 * least_pad && rounding < 0.5 * least_pad).then_some(rounding)
 }
 
@@ -899,19 +898,20 @@ fn rounding_walks<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> Option<
 /// neighbouring values of `T`: to nearest, unless the move's contacts
 /// ([`super::Trace::contacts`]) make a crease (two normals more than
 /// [`CREASE_SIN_SQ`] apart) and that moves the body towards the plane of
-/// one of them and another choice does not; then the choice nearest to `origin + d`
-/// of those that move it towards none, or, where every choice does, the
-/// one that moves it least towards the worst. Only a choice within the
-/// bound `rounding` (`R`, eSpace) of `origin + d` is taken, and only where
-/// every triangle within reach keeps half its padding there or its
-/// thinnest skin is thicker than the nearest's (one or two scans, in the
-/// frames that take another choice than the nearest): a triangle the
+/// one of them and another choice does not; then the choice nearest to
+/// `origin + d` of those that move it towards none, or, where every choice
+/// does, the one that moves it least towards the worst. Only a choice
+/// within the bound `rounding` (`R`, eSpace) of `origin + d` is taken, and
+/// only where every triangle within reach keeps half its padding there or
+/// its thinnest skin is thicker than the nearest's (one or two scans, in
+/// the frames that take another choice than the nearest): a triangle the
 /// body did not touch can lie nearer than `R` (a first version moved a
 /// coordinate by up to an ulp and carried a body into the far wall of a
-/// slot `8.8e-4` radii wider than itself). The rounding errors
-/// are measured as `(w - origin) - d`, whose first difference is exact
-/// where `w` and `origin` lie within a factor two of each other (Sterbenz)
-/// and is otherwise within `u |w|` of the one the bound allows.
+/// slot `8.8e-4` radii wider than itself). Where rounding to nearest
+/// returns the body to `origin`, its start, it stays there. The rounding
+/// errors are measured as `(w - origin) - d`, whose first difference is
+/// exact where `w` and `origin` lie within a factor two of each other
+/// (Sterbenz) and is otherwise within `u |w|` of the one the bound allows.
 fn off_contacts<T: Real>(
     frame: &mut Frame<'_, T>,
     d: &Vec3<T>,
@@ -1001,10 +1001,17 @@ fn off_contacts<T: Real>(
 /// `min(max_padding, (position_ulps m + padding_ulps) u)`; `None` where it
 /// cannot.
 pub(crate) fn final_rounding<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> Option<f64> {
+    let (rounding, least_pad) = rounding_and_least_pad::<T>(m, travel, opts);
+    (rounding >= 0.5 * least_pad).then_some(rounding)
+}
+
+/// The final rounding's bound `R = rounding_ulps u (m + 2 travel)` and
+/// the least padding `min(max_padding, (position_ulps m + padding_ulps)
+/// u)` ([`final_rounding`], [`rounding_walks`]).
+fn rounding_and_least_pad<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> (f64, f64) {
     let u = T::unit_roundoff();
     let rounding = opts.rounding_ulps * u * (m + 2.0 * travel);
-    let least_pad = opts.max_padding.min((opts.position_ulps * m + opts.padding_ulps) * u);
-    (rounding >= 0.5 * least_pad).then_some(rounding)
+    (rounding, opts.max_padding.min((opts.position_ulps * m + opts.padding_ulps) * u))
 }
 
 /// [`land`] where the rounding `R` could undo the skin: measure the
