@@ -852,8 +852,9 @@ fn skin_in_crease<T: Real>(
 /// `2u |p|`) and, where a triangle lies closer than `1 + pad / 2`, moved by
 /// the shortest push that leaves every triangle within reach `1 + pad + R`
 /// away ([`land_checked`]). `|p|` is bounded by `reach`, the frame's
-/// reach radius (eSpace), plus the depenetration pushes. Otherwise the
-/// check costs a few operations.
+/// reach radius (eSpace), plus the depenetration pushes. From a quarter
+/// of it to half, the rounding is chosen in a crease ([`off_contacts`]).
+/// Otherwise the check costs a few operations.
 #[inline(always)]
 pub(crate) fn land<T: Real>(
     frame: &mut Frame<'_, T>,
@@ -862,15 +863,25 @@ pub(crate) fn land<T: Real>(
     reach: f64,
     opts: &RobustOptions,
 ) -> Vec3<T> {
-    let travel = reach + frame.trace.depenetration;
+    let (rounding, least_pad) =
+        rounding_and_least_pad::<T>(frame.start_magnitude, reach + frame.trace.depenetration, opts);
     let d = frame.body.from_espace(p);
-    let world = match rounding_walks::<T>(frame.start_magnitude, travel, opts) {
-        Some(rounding) => off_contacts(frame, &d, origin, rounding, opts),
-        None => d + origin,
-    };
-    match final_rounding::<T>(frame.start_magnitude, travel, opts) {
-        None => world,
-        Some(rounding) => land_checked(frame, world, origin, rounding, opts),
+    if rounding >= 0.5 * least_pad {
+        let world = d + origin;
+        land_checked(frame, world, origin, rounding, opts)
+    } else if rounding >= 0.25 * least_pad {
+        // From a quarter of the least padding on, rounded to nearest frame
+        // after frame, a body sliding along a crease can walk into it by
+        // rounding (each frame's step rounded the same way, up to `R`
+        // towards a wall), faster than the skin's restoring pushes,
+        // themselves rounded, carry it back out (a review, session 36: an
+        // ellipsoid `2.9e4` radii out in `f32`, pushed along the crease of
+        // a floor and a ceiling meeting at 22 degrees, ended `2.9e-4` radii
+        // inside the ceiling every 40 frames). From half on, the skin is
+        // checked after the rounding instead.
+        off_contacts(frame, &d, origin, rounding, opts)
+    } else {
+        d + origin
     }
 }
 
@@ -878,21 +889,6 @@ pub(crate) fn land<T: Real>(
 /// (`sin^2` of their angle: about 0.6 degrees) make a crease for
 /// [`off_contacts`].
 const CREASE_SIN_SQ: f64 = 1e-4;
-
-/// The final rounding's bound `R` ([`final_rounding`]) where it reaches a
-/// quarter of the least padding but not half of it (from half on, the
-/// skin is checked after the rounding: [`land_checked`]); `None`
-/// elsewhere. There, rounded to nearest frame after frame, a body sliding
-/// along a crease can walk into it by rounding (each frame's step rounded
-/// the same way, up to `R` towards a wall), faster than the skin's
-/// restoring pushes, themselves rounded, carry it back out (a review,
-/// session 36: an ellipsoid `2.9e4` radii out in `f32`, pushed along the
-/// crease of a floor and a ceiling meeting at 22 degrees, ended `2.9e-4`
-/// radii inside the ceiling every 40 frames).
-fn rounding_walks<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> Option<f64> {
-    let (rounding, least_pad) = rounding_and_least_pad::<T>(m, travel, opts);
-    (rounding >= 0.25 * least_pad && rounding < 0.5 * least_pad).then_some(rounding)
-}
 
 /// `origin + d` (world space), each coordinate rounded to one of its two
 /// neighbouring values of `T`: to nearest, unless the move's contacts
@@ -939,12 +935,7 @@ fn off_contacts<T: Real>(
     let error = |w: &Vec3<T>| frame.body.to_espace(&((w - origin) - d));
     // The most the rounding error `e` moves the body towards a contact's
     // plane (negative: towards it).
-    let worst = |e: &Vec3<T>| {
-        contacts.iter().map(|c| dot(&c.hit.normal, e)).fold(None, |m: Option<T>, x| match m {
-            Some(m) if m <= x => Some(m),
-            _ => Some(x),
-        })
-    };
+    let worst = |e: &Vec3<T>| contacts.iter().map(|c| dot(&c.hit.normal, e)).reduce(Real::min);
     let e0 = error(&nearest);
     let Some(w0) = worst(&e0) else { return nearest };
     if !(w0 < T::zero()) {
@@ -960,20 +951,19 @@ fn off_contacts<T: Real>(
         let w =
             Vec3::from_fn(|i, _| if flips(i) { nearest[i].next_toward(e0[i] < T::zero()) } else { nearest[i].clone() });
         let e = error(&w);
-        if !(norm_squared(&e) <= bound_sq) {
+        let e_sq = norm_squared(&e);
+        if !(e_sq <= bound_sq) {
             continue;
         }
         let Some(we) = worst(&e) else { continue };
-        let clear = !(we < T::zero());
-        let best_clear = !(best.0 < T::zero());
-        let better = match (clear, best_clear) {
+        let better = match (!(we < T::zero()), !(best.0 < T::zero())) {
             (true, false) => true,
-            (true, true) => norm_squared(&e) < best.1,
+            (true, true) => e_sq < best.1,
             (false, false) => we > best.0,
             (false, true) => false,
         };
         if better {
-            best = (we, norm_squared(&e), w);
+            best = (we, e_sq, w);
         }
     }
     // The choice may approach a triangle it did not touch by up to `R`:
@@ -1007,7 +997,7 @@ pub(crate) fn final_rounding<T: Real>(m: f64, travel: f64, opts: &RobustOptions)
 
 /// The final rounding's bound `R = rounding_ulps u (m + 2 travel)` and
 /// the least padding `min(max_padding, (position_ulps m + padding_ulps)
-/// u)` ([`final_rounding`], [`rounding_walks`]).
+/// u)` ([`final_rounding`], [`land`]).
 fn rounding_and_least_pad<T: Real>(m: f64, travel: f64, opts: &RobustOptions) -> (f64, f64) {
     let u = T::unit_roundoff();
     let rounding = opts.rounding_ulps * u * (m + 2.0 * travel);
