@@ -410,3 +410,32 @@ fn robust_f32_pressed_into_a_far_crease_comes_to_rest() {
     last.dedup();
     assert_eq!(last.len(), 1, "still moving over the last 100 frames: {:?} -> {:?}", last.first(), last.last());
 }
+
+/// The resting band reaches `2 pad` from a triangle, and from about
+/// `2.1e4` radii out in `f32` the padding exceeds half its cap
+/// `max_padding`: there the scan that finds the resting contacts stopped
+/// at `1 + max_padding` and missed triangles between it and `1 + 2 pad`,
+/// which the sweeps then met one by one without moving the body (found
+/// tracing the sawtooth of `docs/findings.md`, "A sawtooth in tight
+/// notches far out in `f32`": in the notch's corner two of its three
+/// planes lay in that gap, and gravity slid the body along one plane
+/// only). A unit
+/// sphere `3e4` out (padding `7.2e-3`) resting `1.17e-2` from a wall and
+/// pushed straight into it now meets the wall as a resting contact, with
+/// no sweep.
+#[test]
+fn robust_f32_far_body_meets_a_wall_in_its_resting_band_beyond_the_cap_without_sweeping() {
+    use std::sync::Arc;
+    use sweepslide::respond::StopReason;
+    use sweepslide::world::TriangleMesh;
+    let vertices = vec![[29998.0, 29998.0, 30000.0], [29998.0, 30003.0, 30000.0], [30003.0, 29998.0, 30000.0]];
+    let world = World::<f32>::new(Arc::new(TriangleMesh::new(vertices, vec![[0, 1, 2]]).unwrap())).unwrap();
+    let body = Ellipsoid::<f32>::new([1.0; 3]).unwrap();
+    // 518 of the `f32` spacing at 3e4 (2^-9) from the plane: a gap of
+    // 0.01171875, between `max_padding` (0.01) and twice the padding.
+    let p = v::<f32>([30000.0, 30000.0, 30000.0 - 518.0 / 512.0]);
+    let m = move_body(&world, &body, &p, &v([0.0, 0.0, 0.1]), None, &MoveOptions::new(Response::Robust)).unwrap();
+    assert_eq!(m.position, p, "a body within its resting band stays");
+    assert_eq!(m.trace.stop, StopReason::Blocked);
+    assert_eq!(m.trace.iterations, 0, "the wall was swept for, not met as a resting contact");
+}
