@@ -1104,10 +1104,10 @@ impl<T: Real> Nearest<T> {
 /// band` ([`Nearest`]). The scan reaches as far as the band can, `2 pad`
 /// being at most `2 max_padding`: until the thirty-seventh session it
 /// stopped at `1 + max_padding + band`, and where a padding exceeds half
-/// its cap (from about `2.1e4` radii out in `f32`, beside triangles
+/// its cap (from about `2.1e4` radii out in `f32`, or beside triangles
 /// thousands of radii long) the triangles between the two were no resting
-/// contacts; the sweeps met them one by one without moving the body (the
-/// band), and in the notch of `docs/findings.md`, "A sawtooth in tight
+/// contacts; the sweeps met them one by one without moving the body (they
+/// lay within the resting band), and in the notch of `docs/findings.md`, "A sawtooth in tight
 /// notches far out in `f32`", gravity slid a body along one of three walls
 /// it rested against as if the other two were not there. The widening
 /// costs 1.6-1.8% of the terrain replay's instructions.

@@ -419,10 +419,9 @@ fn robust_f32_pressed_into_a_far_crease_comes_to_rest() {
 /// tracing the sawtooth of `docs/findings.md`, "A sawtooth in tight
 /// notches far out in `f32`": in the notch's corner two of its three
 /// planes lay in that gap, and gravity slid the body along one plane
-/// only). A unit
-/// sphere `3e4` out (padding `7.2e-3`) resting `1.17e-2` from a wall and
-/// pushed straight into it now meets the wall as a resting contact, with
-/// no sweep.
+/// only). A unit sphere `3e4` out (padding `7.2e-3`) resting `1.17e-2`
+/// from a wall and pushed straight into it now meets the wall as a
+/// resting contact, with no sweep.
 #[test]
 fn robust_f32_far_body_meets_a_wall_in_its_resting_band_beyond_the_cap_without_sweeping() {
     use std::sync::Arc;
