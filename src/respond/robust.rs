@@ -1107,10 +1107,11 @@ impl<T: Real> Nearest<T> {
 /// its cap (from about `2.1e4` radii out in `f32`, or beside triangles
 /// thousands of radii long) the triangles between the two were no resting
 /// contacts; the sweeps met them one by one without moving the body (they
-/// lay within the resting band), and in the notch of `docs/findings.md`, "A sawtooth in tight
-/// notches far out in `f32`", gravity slid a body along one of three walls
-/// it rested against as if the other two were not there. The widening
-/// costs 1.6-1.8% of the terrain replay's instructions.
+/// lay within the resting band), and in the notch of `docs/findings.md`,
+/// "A sawtooth in tight notches far out in `f32`", gravity slid a body
+/// along one of three walls it rested against as if the other two were
+/// not there. The widening costs 1.6-1.8% of the terrain replay's
+/// instructions.
 fn scan_resting<T: Real>(frame: &mut Frame<'_, T>, p: &Vec3<T>, opts: &RobustOptions) -> Option<Nearest<T>> {
     let one = T::one();
     let reach = one.clone() + T::c(2.0 * opts.max_padding) + &frame.band;
