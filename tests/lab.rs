@@ -9,7 +9,7 @@ use std::process::Command;
 use std::sync::Arc;
 use sweepslide::geom::{Vec3, vec3};
 use sweepslide::lab::metrics::{
-    DRIFT_THRESHOLD, EXACT_BITS, drift, jitter, penetrated, penetration, snag_ratio, triangle_distance_sq,
+    DRIFT_THRESHOLD, EXACT_BITS, drift, jitter, penetrated, penetration, snag_ratio, triangle_distance_sq, wobble,
 };
 use sweepslide::lab::{Precision, RunConfig, Scene, run};
 use sweepslide::respond::Response;
@@ -152,6 +152,74 @@ fn back_and_forth_has_the_jitter_the_formula_gives() {
     }
     let j = jitter(&path, 0.1);
     assert!((j - (0.2 - 0.0) / 0.4).abs() < 1e-12, "{j}");
+}
+
+/// Wobble scores a sliding body's sideways zigzag in proportion to its
+/// size, where jitter scores its square; a body that stops, slows down or
+/// turns once without turning back does not wobble.
+#[test]
+fn wobble_is_linear_in_a_sliding_zigzag_and_zero_for_steady_changes() {
+    // 80 frames: K = 20 steps of 0.1 along x, alternating +-a along y.
+    let zigzag = |a: f64| -> Vec<Vec3<f64>> {
+        (0..=80).map(|k| vec3(0.1 * k as f64, if k % 2 == 0 { 0.0 } else { a }, 0.0)).collect()
+    };
+    for a in [1e-3, 1e-2] {
+        let path = zigzag(a);
+        // 19 step changes of 2a, the first step +a sideways and the last
+        // -a: (19 * 2a - 2a) / (2 * 20 * 0.1) = 9a, which is 0.9 a / speed.
+        let w = wobble(&path, 0.1);
+        assert!((w - 9.0 * a).abs() < 1e-12, "a {a}: wobble {w}");
+        // The path's excess: 20 (sqrt(0.01 + a^2) - ...) ~ a^2 / (2 * 0.1) per step.
+        let j = jitter(&path, 0.1);
+        assert!(j < 0.6 * a * a / 0.01, "a {a}: jitter {j}");
+    }
+    assert!(jitter(&zigzag(4e-3), 0.1) < 1e-3, "the zigzag that jitter misses");
+    assert!(wobble(&zigzag(4e-3), 0.1) > 1e-3);
+    // Stopping, slowing down steadily, and one turn: no wobble (beyond the
+    // rounding of the positions, about `1e-16` of a step).
+    let stop: Vec<Vec3<f64>> = (0..=80).map(|k| vec3(0.1 * k.min(70) as f64, 0.0, 0.0)).collect();
+    assert!(wobble(&stop, 0.1) < 1e-14, "{}", wobble(&stop, 0.1));
+    let mut x = 0.0;
+    let slowing: Vec<Vec3<f64>> = (0..=80)
+        .map(|k| {
+            x += 0.1 / f64::from(k + 1);
+            vec3(x, 0.0, 0.0)
+        })
+        .collect();
+    assert!(wobble(&slowing, 0.1) < 1e-14, "{}", wobble(&slowing, 0.1));
+    let turn: Vec<Vec3<f64>> = (0..=80)
+        .map(|k| if k <= 70 { vec3(0.1 * k as f64, 0.0, 0.0) } else { vec3(7.0, 0.1 * (k - 70) as f64, 0.0) })
+        .collect();
+    assert!(wobble(&turn, 0.1) < 1e-14, "{}", wobble(&turn, 0.1));
+    assert!(jitter(&turn, 0.1) > 1e-3, "jitter scores the turn");
+    // At rest, toggling between two points 0.01 apart: about 0.01 / speed
+    // in both.
+    let toggle: Vec<Vec3<f64>> = (0..=80).map(|k| vec3(if k % 2 == 0 { 0.0 } else { 0.01 }, 0.0, 0.0)).collect();
+    let (w, j) = (wobble(&toggle, 0.1), jitter(&toggle, 0.1));
+    assert!((w - 0.09).abs() < 1e-12 && (j - 0.1).abs() < 1e-12, "wobble {w}, jitter {j}");
+    // Not computable with a NaN position; nothing to compare with two steps.
+    let mut nan = toggle.clone();
+    nan[3] = vec3(f64::NAN, 0.0, 0.0);
+    assert!(wobble(&nan, 0.1).is_nan());
+    assert_eq!(wobble(&toggle[..3], 0.1), 0.0);
+}
+
+/// A review's finding (thirty-eighth session): Fauerby's response slides
+/// along `fold:5` in `f64` zigzagging across the fold every frame (+-2.5
+/// degrees), a jitter of `6.7e-4` that passed as steady; its wobble shows
+/// it. The robust response slides the same fold steadily.
+#[test]
+fn fauerbys_zigzag_along_a_fold_shows_in_its_wobble_not_its_jitter() {
+    let scene = Arc::new(sweepslide::lab::scenes::build("fold:5", 1).unwrap());
+    let result = |response| {
+        run(&RunConfig { scene: scene.clone(), response, detection: None, precision: Precision::F64, seed: 1 })
+            .unwrap()
+            .result
+    };
+    let f = result(Response::Fauerby);
+    assert!(f.jitter < 1e-3 && f.wobble > 1e-2, "jitter {}, wobble {}", f.jitter, f.wobble);
+    let r = result(Response::Robust);
+    assert!(r.jitter < 1e-6 && r.wobble < 1e-6, "jitter {}, wobble {}", r.jitter, r.wobble);
 }
 
 #[test]

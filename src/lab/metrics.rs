@@ -277,6 +277,52 @@ pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
     j.to_f64().max(0.0)
 }
 
+/// Wobble over the same window as [`jitter`], the last `K = max(1, n /
+/// 4)` displacements `d_k`: `(sum_k |d_{k+1} - d_k| - |d_K - d_1|) / (2 K
+/// speed)`, how much the step changed from frame to frame beyond a
+/// steady change (the total variation of the steps less their net
+/// change). Zero for a body at rest or moving by a constant step, and for
+/// one whose step changes steadily (slowing down, stopping or turning
+/// without turning back); positive when the step goes back and forth.
+/// Halved so that a body at rest toggling between two points `a` apart
+/// scores about `a / speed`, as [`jitter`] does.
+///
+/// [`jitter`] (the shared definition, `docs/error-analysis.md`) measures the
+/// path's excess over the net displacement, which for a sliding body grows
+/// with the square of a sideways wobble: a slide of step `s` that zigzags
+/// by `a` across its direction every frame scores about `a^2 / (2 s
+/// speed)` there, and `a / speed` here. A review (thirty-eighth session)
+/// found Fauerby's response zigzagging by +-2.5 degrees every frame along
+/// `fold:5` in `f64` with a jitter of `6.7e-4`, below
+/// [`JITTER_THRESHOLD`]; its wobble is `3.1e-2`.
+///
+/// Computed at [`judge_bits`] from the stored positions (the steps and
+/// their differences exact, the norms rounded by a relative `2^-bits`);
+/// the rounded difference is clamped at zero as [`jitter`]'s is. Zero
+/// with fewer than two steps or without a speed; NaN when a position is
+/// NaN or infinite.
+#[must_use]
+pub fn wobble<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
+    let n = positions.len().saturating_sub(1);
+    if positions.iter().any(|p| !p.iter().all(Real::is_finite)) {
+        return f64::NAN;
+    }
+    let k = (n / 4).max(1);
+    if k < 2 || !(speed > 0.0) {
+        return 0.0;
+    }
+    let tail: Vec<V> = positions[positions.len() - 1 - k..].iter().map(exact).collect();
+    let steps: Vec<V> = tail.windows(2).map(|w| sub(&w[1], &w[0])).collect();
+    let norm = |d: &V| dot(d, d).sqrt();
+    let mut variation = Float::new(judge_bits::<T>());
+    for w in steps.windows(2) {
+        variation += norm(&sub(&w[1], &w[0]));
+    }
+    let net = norm(&sub(&steps[k - 1], &steps[0]));
+    let w = Float::with_val(judge_bits::<T>(), variation - net) / (2.0 * k as f64 * speed);
+    w.to_f64().max(0.0)
+}
+
 /// The snag ratio: displacement achieved along the ideal slide direction
 /// divided by the ideal displacement (`frames * |ideal|`); 1 means no snag.
 #[must_use]

@@ -1,6 +1,6 @@
 //! Runs a scene with one response in one precision and measures it.
 
-use super::metrics::{drift, jitter, penetrated, penetration, snag_ratio};
+use super::metrics::{drift, jitter, penetrated, penetration, snag_ratio, wobble};
 use super::scenes::{Scene, Steering};
 use crate::detect::Detection;
 use crate::geom::{Ellipsoid, Feature, Vec3, to_f64, vec3};
@@ -145,6 +145,11 @@ pub struct RunResult {
     /// JSON, for a run with NaN frames: not computable).
     #[serde(with = "super::json_float::number")]
     pub jitter: f64,
+    /// Wobble over the same frames ([`super::metrics::wobble`]): how much
+    /// the step went back and forth from frame to frame, which a sliding
+    /// body's jitter barely shows (NaN, written `"NaN"`, where jitter is).
+    #[serde(with = "super::json_float::number")]
+    pub wobble: f64,
     /// Largest number of collision checks in one frame (the freeze metric).
     pub max_iterations: u32,
     /// Largest number of collision checks in one pass of a frame (the
@@ -511,6 +516,7 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
         back_face_frames: back_face,
         max_front_penetration: max_front,
         jitter: jitter(&positions, speed),
+        wobble: wobble(&positions, speed),
         max_iterations,
         max_pass_iterations: max_pass,
         mean_iterations: iterations_sum as f64 / moves.max(1) as f64,

@@ -60,6 +60,14 @@ fn single(r: &RunResult) -> bool {
     r.precision == "f32" || r.precision == "mpfr24"
 }
 
+/// Whether a run came to rest or slid steadily: its jitter and its wobble
+/// ([`crate::lab::metrics::wobble`], the measure that a sliding body's
+/// zigzag shows in) at most [`JITTER_THRESHOLD`]; `false` where either is
+/// NaN.
+fn steady(r: &RunResult) -> bool {
+    r.jitter <= JITTER_THRESHOLD && r.wobble <= JITTER_THRESHOLD
+}
+
 /// The runs of `rs` without NaN frames, and how many had some: after a
 /// NaN position a run shows nothing (no penetration can be measured, no
 /// jitter computed), so it cannot show an absence and is left out of the
@@ -166,10 +174,10 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
     claims.push(Claim {
         source: "Linahan 2012, III.B, Fig. 2-3",
         text: "Fauerby's response jitters in an obtuse corner instead of coming to rest.",
-        reproduced: !fj.is_empty() && fj.iter().all(|r| r.jitter > JITTER_THRESHOLD),
+        reproduced: !fj.is_empty() && fj.iter().all(|r| !steady(r)),
         evidence: fj
             .iter()
-            .map(|r| format!("jitter {:.3} in {}", r.jitter, describe(r)))
+            .map(|r| format!("jitter {:.3}, wobble {:.3} in {}", r.jitter, r.wobble, describe(r)))
             .collect::<Vec<_>>()
             .join("; ")
             + &left_out(fj_nan),
@@ -208,10 +216,10 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
     claims.push(Claim {
         source: "Linahan 2012, III.G",
         text: "Linahan's response comes to rest in corners: no jitter.",
-        reproduced: !lj.is_empty() && lj.iter().all(|r| r.jitter <= JITTER_THRESHOLD),
+        reproduced: !lj.is_empty() && lj.iter().all(|r| steady(r)),
         evidence: lj
             .iter()
-            .map(|r| format!("jitter {:.3e} in {}", r.jitter, describe(r)))
+            .map(|r| format!("jitter {:.3e}, wobble {:.3e} in {}", r.jitter, r.wobble, describe(r)))
             .collect::<Vec<_>>()
             .join("; ")
             + &left_out(lj_nan),
@@ -338,8 +346,12 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
     claims.push(Claim {
         source: "sweepslide",
         text: "The robust response does not jitter in corners, wedges, creases, folds and dead ends.",
-        reproduced: !rest.is_empty() && rest.iter().all(|r| r.jitter <= JITTER_THRESHOLD),
-        evidence: worst(rest.iter().copied(), |r| r.jitter, " jitter"),
+        reproduced: !rest.is_empty() && rest.iter().all(|r| steady(r)),
+        evidence: format!(
+            "{}; {}",
+            worst(rest.iter().copied(), |r| r.jitter, " jitter"),
+            worst(rest.iter().copied(), |r| r.wobble, " wobble")
+        ),
     });
     let rs: Vec<&RunResult> = of("robust").filter(|r| r.snag.is_some()).collect();
     claims.push(Claim {

@@ -27,7 +27,9 @@ fn summary_row(out: &mut String, response: &str, precision: &str, rs: &[&RunResu
     let pen_frames: usize = rs.iter().map(|r| r.counted_penetration().0).sum();
     // Over the constant pushes whose jitter could be computed (a run with
     // NaN frames has none); "-" when there are none.
-    let jitter = rs.iter().filter(|r| r.motion == "constant" && !r.jitter.is_nan()).map(|r| r.jitter).reduce(f64::max);
+    let constant = || rs.iter().filter(|r| r.motion == "constant" && !r.jitter.is_nan());
+    let jitter = constant().map(|r| r.jitter).reduce(f64::max);
+    let wobble = constant().map(|r| r.wobble).reduce(f64::max);
     let sum = |f: &dyn Fn(&RunResult) -> usize| rs.iter().map(|r| f(r)).sum::<usize>();
     let snag = rs.iter().filter_map(|r| r.snag).fold(f64::INFINITY, f64::min);
     let drift = rs.iter().filter_map(|r| r.drift).reduce(f64::max);
@@ -37,12 +39,13 @@ fn summary_row(out: &mut String, response: &str, precision: &str, rs: &[&RunResu
     let all_pen = max(&|r| r.max_penetration);
     let _ = writeln!(
         out,
-        "<tr><td class=l>{response}</td><td class=l>{precision}</td><td class={}>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class={}>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td></tr>",
+        "<tr><td class=l>{response}</td><td class=l>{precision}</td><td class={}>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class={}>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td></tr>",
         if pen > 0.0 { "no" } else { "yes" },
         sci(pen),
         pen_frames,
         sci(all_pen),
         jitter.map_or_else(|| "-".into(), sci),
+        wobble.map_or_else(|| "-".into(), sci),
         rs.iter().map(|r| r.max_iterations).max().unwrap_or(0),
         if sum(&|r| r.nan_frames) > 0 { "no" } else { "yes" },
         sum(&|r| r.nan_frames),
@@ -66,11 +69,11 @@ fn figure(out: &mut String, f: &Figure) {
 }
 
 fn run_table(out: &mut String, rs: &[&RunResult]) {
-    out.push_str("<table><tr><th class=l>response</th><th class=l>precision</th><th>seed</th><th>max penetration</th><th>penetrating frames</th><th>jitter</th><th>max checks</th><th>capped frames</th><th>NaN frames</th><th>decision flips</th><th>plane flips</th><th>snag</th><th>drift</th><th>ns/move</th></tr>\n");
+    out.push_str("<table><tr><th class=l>response</th><th class=l>precision</th><th>seed</th><th>max penetration</th><th>penetrating frames</th><th>jitter</th><th>wobble</th><th>max checks</th><th>capped frames</th><th>NaN frames</th><th>decision flips</th><th>plane flips</th><th>snag</th><th>drift</th><th>ns/move</th></tr>\n");
     for r in rs {
         let _ = writeln!(
             out,
-            "<tr><td class=l>{}</td><td class=l>{}</td><td>{}</td><td class={}>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td></tr>",
+            "<tr><td class=l>{}</td><td class=l>{}</td><td>{}</td><td class={}>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td></tr>",
             r.response,
             r.precision,
             r.seed,
@@ -82,6 +85,7 @@ fn run_table(out: &mut String, rs: &[&RunResult]) {
                 r.penetrating_frames.to_string()
             },
             sci(r.jitter),
+            sci(r.wobble),
             r.max_iterations,
             r.capped_frames,
             r.nan_frames,
@@ -125,8 +129,8 @@ pub fn page(runs: &Runs, figures: &[Figure], elapsed_s: Option<f64>) -> String {
     for note in super::degenerate_notes(runs) {
         let _ = writeln!(out, "<p class=bad>{}</p>", html_escape(&note));
     }
-    out.push_str("<h2>Summary</h2><p>Aggregates over every scene of the main table, worst or total per response and precision. Penetration is in world units for a sphere and in radii for an ellipsoid (the <code>room</code> scene and some fuzz cases). For Fauerby's detection (kept by Linahan's response), which is one-sided by design, it leaves out the frames that end inside only triangles they entered from behind (the body's centre behind each one's plane at the start of the frame it entered it); the next column counts every frame. Jitter counts the constant-push scenes only (a steered path bends, which the formula also scores). Drift is in radii off the ideal slide's line, from the first frame that slides as the ideal does (none where no frame does). Time is the median of the runs' mean time per move.</p>\n");
-    out.push_str("<table><tr><th class=l>response</th><th class=l>precision</th><th>worst penetration</th><th>penetrating frames</th><th>incl. entered from behind</th><th>worst jitter</th><th>max checks/frame</th><th>NaN frames</th><th>decision flips</th><th>plane flips</th><th>worst snag ratio</th><th>worst drift</th><th>ns/move</th></tr>\n");
+    out.push_str("<h2>Summary</h2><p>Aggregates over every scene of the main table, worst or total per response and precision. Penetration is in world units for a sphere and in radii for an ellipsoid (the <code>room</code> scene and some fuzz cases). For Fauerby's detection (kept by Linahan's response), which is one-sided by design, it leaves out the frames that end inside only triangles they entered from behind (the body's centre behind each one's plane at the start of the frame it entered it); the next column counts every frame. Jitter (the path's excess over the net displacement) and wobble (how much the step goes back and forth from frame to frame, which shows a sliding body's zigzag that jitter barely scores) count the constant-push scenes only (a steered path bends, which both also score). Drift is in radii off the ideal slide's line, from the first frame that slides as the ideal does (none where no frame does). Time is the median of the runs' mean time per move.</p>\n");
+    out.push_str("<table><tr><th class=l>response</th><th class=l>precision</th><th>worst penetration</th><th>penetrating frames</th><th>incl. entered from behind</th><th>worst jitter</th><th>worst wobble</th><th>max checks/frame</th><th>NaN frames</th><th>decision flips</th><th>plane flips</th><th>worst snag ratio</th><th>worst drift</th><th>ns/move</th></tr>\n");
     for resp in ["fauerby", "linahan", "robust"] {
         for prec in super::matrix::PRECISIONS {
             let p = prec.to_string();
@@ -139,7 +143,7 @@ pub fn page(runs: &Runs, figures: &[Figure], elapsed_s: Option<f64>) -> String {
     out.push_str("</table>\n");
     let _ = writeln!(
         out,
-        "<h2>Claims</h2><p>Jitter counts above {JITTER_THRESHOLD:e} of the speed, snagging below a ratio of {SNAG_THRESHOLD}, drift from {DRIFT_THRESHOLD:e} radii on.</p><table><tr><th class=l>source</th><th class=l>claim</th><th class=l>verdict</th><th class=l>evidence</th></tr>"
+        "<h2>Claims</h2><p>Jitter and wobble count above {JITTER_THRESHOLD:e} of the speed, snagging below a ratio of {SNAG_THRESHOLD}, drift from {DRIFT_THRESHOLD:e} radii on.</p><table><tr><th class=l>source</th><th class=l>claim</th><th class=l>verdict</th><th class=l>evidence</th></tr>"
     );
     for c in evaluate(runs) {
         let _ = writeln!(

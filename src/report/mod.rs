@@ -207,7 +207,7 @@ pub fn render(dir: &Path, runs: &Runs, elapsed_s: Option<f64>) -> Result<Vec<Pat
 
 fn csv(lines: &[ResultLine<'_>]) -> String {
     let mut out = String::from(
-        "index,group,scene,response,detection,precision,seed,frames,motion,max_penetration,penetrating_frames,first_penetrating_frame,back_face_frames,max_front_penetration,jitter,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,embedded_frames,decision_flips,plane_flips,snag,drift,final_x,final_y,final_z,ns_per_move,degenerate_triangles\n",
+        "index,group,scene,response,detection,precision,seed,frames,motion,max_penetration,penetrating_frames,first_penetrating_frame,back_face_frames,max_front_penetration,jitter,wobble,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,embedded_frames,decision_flips,plane_flips,snag,drift,final_x,final_y,final_z,ns_per_move,degenerate_triangles\n",
     );
     for l in lines {
         let r = l.result;
@@ -220,7 +220,7 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
         let first = r.first_penetrating_frame.map_or(String::new(), |f| f.to_string());
         let [x, y, z] = r.final_position;
         out += &format!(
-            "{},{group},\"{}\",{},{},{},{},{},{},{:e},{},{first},{},{:e},{:e},{},{},{},{},{},{},{},{},{snag},{drift},{x:e},{y:e},{z:e},{:.1},{}\n",
+            "{},{group},\"{}\",{},{},{},{},{},{},{:e},{},{first},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{snag},{drift},{x:e},{y:e},{z:e},{:.1},{}\n",
             l.index,
             // A quoted CSV field doubles its quotes (a mesh's file name may
             // hold one).
@@ -236,6 +236,7 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
             r.back_face_frames,
             r.max_front_penetration,
             r.jitter,
+            r.wobble,
             r.max_iterations,
             r.max_pass_iterations,
             r.mean_iterations,
