@@ -36,24 +36,35 @@ fn body_inside_a_plane_by_a_tenth_reports_a_tenth() {
     assert_eq!(penetration(&world, &vec3(1.0, 1.0, 1.0), &vec3(0.0, 1.5, 0.0)), None);
 }
 
-/// The triangles a body ends inside of, with their depths and whether the
-/// frame started behind each one's plane (the floor's front is +y).
+/// The triangles a body ends inside of, with their depths and whether it
+/// entered each from behind: the frame started behind its plane (the
+/// floor's front is +y) and one of the frame's passes moved along its
+/// front normal, so that Fauerby's detection culled it.
 #[test]
-fn penetrated_lists_each_triangle_with_the_side_the_start_was_on() {
+fn penetrated_lists_each_triangle_with_whether_it_was_entered_from_behind() {
     let world = floor();
     let r = vec3(1.0, 1.0, 1.0);
     let inside = vec3(0.5, 0.5, 5.0);
-    let sides = |start: Vec3<f64>| -> Vec<(u32, f64, bool)> {
-        penetrated(&world, &r, &start, &inside).iter().map(|p| (p.triangle, p.depth, p.start_behind)).collect()
+    let up = vec3(0.0, 1.0, 0.0);
+    let sides = |start: Vec3<f64>, passes: &[&Vec3<f64>]| -> Vec<(u32, f64, bool)> {
+        penetrated(&world, &r, &start, &inside, passes).iter().map(|p| (p.triangle, p.depth, p.from_behind)).collect()
     };
-    assert_eq!(sides(vec3(0.5, 1.5, 5.0)), vec![(0, 0.5, false)]);
-    assert_eq!(sides(vec3(0.5, 0.0, 5.0)), vec![(0, 0.5, false)], "in the plane: not behind");
-    assert_eq!(sides(vec3(0.5, -0.5, 5.0)), vec![(0, 0.5, true)]);
-    assert!(penetrated(&world, &r, &vec3(0.5, -0.5, 5.0), &vec3(0.5, 1.5, 5.0)).is_empty(), "not inside");
+    assert_eq!(sides(vec3(0.5, 1.5, 5.0), &[&up]), vec![(0, 0.5, false)]);
+    assert_eq!(sides(vec3(0.5, 0.0, 5.0), &[&up]), vec![(0, 0.5, false)], "in the plane: not behind");
+    assert_eq!(sides(vec3(0.5, -0.5, 5.0), &[&up]), vec![(0, 0.5, true)]);
+    // Behind, but no pass culls the floor: along its plane, or towards its
+    // back (the detection checks it), or no pass at all.
+    let (along, down) = (vec3(1.0, 0.0, 0.0), vec3(0.0, -1.0, 0.0));
+    assert_eq!(sides(vec3(0.5, -0.5, 5.0), &[&along]), vec![(0, 0.5, false)]);
+    assert_eq!(sides(vec3(0.5, -0.5, 5.0), &[&along, &down]), vec![(0, 0.5, false)]);
+    assert_eq!(sides(vec3(0.5, -0.5, 5.0), &[]), vec![(0, 0.5, false)]);
+    // One pass of two culling it is enough.
+    assert_eq!(sides(vec3(0.5, -0.5, 5.0), &[&along, &up]), vec![(0, 0.5, true)]);
+    assert!(penetrated(&world, &r, &vec3(0.5, -0.5, 5.0), &vec3(0.5, 1.5, 5.0), &[&up]).is_empty(), "not inside");
     // In eSpace: radii (1, 4, 1) reach 4 below the floor.
     let tall = vec3(1.0, 4.0, 1.0);
-    let deep = penetrated(&world, &tall, &vec3(0.5, -5.0, 5.0), &vec3(0.5, -3.0, 5.0));
-    assert_eq!(deep.iter().map(|p| (p.triangle, p.depth, p.start_behind)).collect::<Vec<_>>(), vec![(0, 0.25, true)]);
+    let deep = penetrated(&world, &tall, &vec3(0.5, -5.0, 5.0), &vec3(0.5, -3.0, 5.0), &[&up]);
+    assert_eq!(deep.iter().map(|p| (p.triangle, p.depth, p.from_behind)).collect::<Vec<_>>(), vec![(0, 0.25, true)]);
     // A wall at x = 2 facing -x beside the floor: a body that came up
     // through the floor ends inside both, and only the floor was entered
     // from behind.
@@ -66,11 +77,52 @@ fn penetrated_lists_each_triangle_with_the_side_the_start_was_on() {
         [2.0, -10.0, 10.0],
     ];
     let both = World::new(Arc::new(TriangleMesh::new(v, vec![[0, 1, 2], [3, 5, 4]]).unwrap())).unwrap();
-    let mut two = penetrated(&both, &r, &vec3(1.0, -0.5, 5.0), &vec3(1.2, 0.5, 5.0));
+    let step = vec3(0.2, 1.0, 0.0);
+    let mut two = penetrated(&both, &r, &vec3(1.0, -0.5, 5.0), &vec3(1.2, 0.5, 5.0), &[&step]);
     two.sort_by_key(|p| p.triangle);
-    assert_eq!((two[0].triangle, two[0].depth, two[0].start_behind), (0, 0.5, true));
-    assert_eq!((two[1].triangle, two[1].start_behind), (1, false));
+    assert_eq!((two[0].triangle, two[0].depth, two[0].from_behind), (0, 0.5, true));
+    assert_eq!((two[1].triangle, two[1].from_behind), (1, false));
     assert!((two[1].depth - 0.2).abs() < 1e-15, "{:?}", two[1]);
+}
+
+/// A review's finding (thirty-eighth session): a body beside a triangle,
+/// behind its plane's extension, pushed along the plane into its edge is
+/// not culled by Fauerby's detection (`n . v = 0`), so when it sinks in
+/// (in `f32` `1e5` out both faithful responses went `0.54` radii into
+/// such an edge) that counts against the response, as its mirror image in
+/// front does; the side of the start alone had excused it.
+#[test]
+fn a_body_pushed_along_a_plane_into_an_edge_from_behind_it_is_not_excused() {
+    let tri = |y: f64| {
+        let v = vec![[1e5, 0.0, -1e3], [1e5, 0.0, 1e3], [1e5 + 100.0, 0.0, 0.0]];
+        let scene = Scene {
+            name: "edge-beside".into(),
+            description: "a body beside a triangle's edge, pushed along its plane".into(),
+            mesh: Arc::new(TriangleMesh::new(v, vec![[0, 1, 2]]).unwrap()),
+            start: [1e5 - 0.9, y, -500.0],
+            radii: [1.0; 3],
+            velocity: [0.02, 0.0, 0.1],
+            gravity: [0.0; 3],
+            frames: 300,
+            motion: sweepslide::lab::scenes::Motion::Constant,
+            ideal: None,
+            units_per_meter: 1.0,
+        };
+        let cfg = RunConfig {
+            scene: Arc::new(scene),
+            response: Response::Fauerby,
+            detection: None,
+            precision: Precision::F32,
+            seed: 1,
+        };
+        run(&cfg).unwrap().result
+    };
+    for y in [0.45, -0.45] {
+        let r = tri(y);
+        assert!(r.max_penetration > 0.1, "y {y}: {r:?}");
+        assert_eq!(r.back_face_frames, 0, "y {y}: {r:?}");
+        assert_eq!(r.counted_penetration(), (r.penetrating_frames, r.max_penetration), "y {y}");
+    }
 }
 
 /// A negative penetration is minus the clearance to the nearest triangle,

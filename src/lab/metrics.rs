@@ -136,42 +136,62 @@ pub struct Penetrated {
     pub triangle: u32,
     /// Its penetration, as [`penetration`] measures it.
     pub depth: f64,
-    /// Whether the frame's start centre lay strictly behind the
-    /// triangle's plane: on the side opposite to `(b - a) x (c - a)` (in
-    /// eSpace, the sign computed at [`judge_bits`] bits; `false` for a
-    /// zero-area triangle, which has no back). Fauerby's one-sided
-    /// detection culls a triangle by the direction of motion instead (a
-    /// motion along its front normal); a body behind a plane that comes
-    /// to the triangle moves along that normal, so what this side marks is
-    /// culled there too, though the converse need not hold (a body in
-    /// front that moves away from the plane and reaches the triangle over
-    /// an edge is culled but marked as a front entry, counted against the
-    /// response).
-    pub start_behind: bool,
+    /// Whether the body entered it from behind as Fauerby's one-sided
+    /// detection passes through a triangle: the frame's start centre lay
+    /// strictly behind the triangle's plane (on the side opposite to `(b -
+    /// a) x (c - a)`), and the displacement of one of the frame's passes
+    /// points along that front normal, so that the detection culled the
+    /// triangle (`isFrontFacingTo` fails: `n . v > 0`). Both signs are
+    /// computed exactly in eSpace at [`judge_bits`] bits; `false` for a
+    /// zero-area triangle, which has no back.
+    ///
+    /// The side alone is not enough (a review, thirty-eighth session): a
+    /// body beside a triangle, behind its plane's extension, that moves
+    /// into its edge along the plane (`n . v = 0`) is not culled, and in
+    /// `f32` `1e5` out Fauerby's and Linahan's responses went `0.54` radii
+    /// into it, excused as entered from behind, while its mirror image, in
+    /// front, counted. Looked at per pass, not per sweep: a later sweep of
+    /// a pass slides along another direction, which the lab does not see,
+    /// so an entry in a slid sweep that faced the triangle, or in the other
+    /// pass, can still be excused where one pass's displacement culled it.
+    pub from_behind: bool,
 }
 
 /// Every triangle a body that moved from `start` to `end` is inside of at
-/// `end` (empty when none, or when either is not finite).
+/// `end` (empty when none, or when either is not finite), with whether it
+/// entered each from behind ([`Penetrated::from_behind`]) by the frame's
+/// `passes` (its velocity and gravity, world space; zero ones cull
+/// nothing).
 ///
-/// Whether a body entered a triangle from behind is decided by the side
-/// its centre was on in the frame where it entered, not later: a body deep
-/// inside can carry its centre through the plane. The lab's runner keeps
-/// that side from frame to frame ([`crate::lab::RunResult::back_face_frames`]).
+/// Whether a body entered a triangle from behind is decided in the frame
+/// where it entered, not later: a body deep inside can carry its centre
+/// through the plane. The lab's runner keeps that verdict from frame to
+/// frame ([`crate::lab::RunResult::back_face_frames`]).
 #[must_use]
-pub fn penetrated<T: Real>(world: &World<T>, radii: &Vec3<T>, start: &Vec3<T>, end: &Vec3<T>) -> Vec<Penetrated> {
+pub fn penetrated<T: Real>(
+    world: &World<T>,
+    radii: &Vec3<T>,
+    start: &Vec3<T>,
+    end: &Vec3<T>,
+    passes: &[&Vec3<T>],
+) -> Vec<Penetrated> {
     let Some(near) = Near::at(world, radii, end).filter(|_| start.iter().all(Real::is_finite)) else {
         return Vec::new();
     };
     let s = near.to_espace(start);
+    let passes: Vec<V> = passes.iter().map(|v| near.to_espace(v)).collect();
     near.triangles
         .iter()
         .filter(|(_, _, d2)| *d2 < 1)
         .map(|(t, [a, b, c], d2)| {
-            let side = dot(&cross(&sub(b, a), &sub(c, a)), &sub(&s, a));
+            let normal = cross(&sub(b, a), &sub(c, a));
+            let side = dot(&normal, &sub(&s, a));
+            let behind = side.is_sign_negative() && !side.is_zero();
+            let culled = passes.iter().any(|v| dot(&normal, v) > 0);
             Penetrated {
                 triangle: *t,
                 depth: near.depth(std::iter::once(d2)).unwrap_or(0.0),
-                start_behind: side.is_sign_negative() && !side.is_zero(),
+                from_behind: behind && culled,
             }
         })
         .collect()

@@ -132,7 +132,9 @@ pub struct RunResult {
     pub first_penetrating_frame: Option<usize>,
     /// Penetrating frames that entered every triangle they end inside of
     /// from behind (its centre behind the triangle's plane at the start of
-    /// the frame it entered it; [`super::metrics::penetrated`]): for
+    /// the frame it entered it, moving along its front normal in one of
+    /// that frame's passes, so that Fauerby's detection culled it;
+    /// [`super::metrics::Penetrated::from_behind`]): for
     /// Fauerby's one-sided detection (and so the faithful responses) the
     /// semantics of a triangle solid from the front only, not a failure;
     /// for a two-sided detection, penetrations like any other.
@@ -440,12 +442,13 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
             max_pen = max_pen.max(d);
             // Each triangle keeps the side the body entered it from while
             // the body stays inside it.
-            let now = penetrated(&world, body.radii(), &p, &m.position);
+            let passes: Vec<&Vec3<T>> = std::iter::once(&vel).chain(grav).collect();
+            let now = penetrated(&world, body.radii(), &p, &m.position, &passes);
             let entered: Vec<(u32, bool)> = now
                 .iter()
                 .map(|t| {
                     let kept = inside.iter().find(|(i, _)| *i == t.triangle).map(|(_, behind)| *behind);
-                    (t.triangle, kept.unwrap_or(t.start_behind))
+                    (t.triangle, kept.unwrap_or(t.from_behind))
                 })
                 .collect();
             let front = now.iter().zip(&entered).filter(|(_, (_, behind))| !behind).map(|(t, _)| t.depth);
