@@ -931,45 +931,50 @@ fn move_options_out_of_range_name_the_field() {
     }
 }
 
-/// `robust.rounding_ulps` beyond `1 / (2u)` of the backend is refused
-/// (`1e7` in `f32` carried a body through a slot's wall, `1e300` gave an
-/// infinite position, both `Ok`: a review, session 29); up to it, and in
+/// A tolerance counted in units of `u` beyond `1 / (2u)` of the backend is
+/// refused: `robust.rounding_ulps` (`1e7` in `f32` carried a body through a
+/// slot's wall, `1e300` gave an infinite position, both `Ok`: a review,
+/// session 29), `robust.feasible_ulps` (`1e16` in `f64` made every
+/// displacement negligible and froze a body in empty space: a review,
+/// thirty-eighth session); up to it, and in
 /// `f64` where `1e7` is a small share, the move runs.
 #[test]
-fn a_final_rounding_bound_beyond_any_rounding_is_refused() {
+fn a_tolerance_beyond_any_rounding_is_refused() {
     use sweepslide::respond::{MoveOptions, Response, move_body};
-    let mut o = MoveOptions::new(Response::Robust);
     let (p, v) = ([0.0, 1.0, 0.0], [0.1, -0.2, 0.0]);
-    let f32_move = |o: &MoveOptions| {
-        move_body(
-            &floor_world::<f32>(),
-            &Ellipsoid::sphere(0.5).unwrap(),
-            &vec3(p[0], p[1], p[2]),
-            &vec3(v[0], v[1], v[2]),
-            None,
-            o,
-        )
-    };
-    for ulps in [1e7, 1e300] {
-        o.robust.rounding_ulps = ulps;
-        assert_eq!(o.validate(), Ok(()), "the range depends on the backend");
-        match f32_move(&o) {
-            Err(Error::InvalidArgument { what, .. }) => assert_eq!(what, "robust.rounding_ulps"),
-            other => panic!("{ulps:e}: {other:?}"),
+    let move_in = |o: &MoveOptions, f64_world: bool| {
+        let (pos, vel) = (vec3(p[0], p[1], p[2]), vec3(v[0], v[1], v[2]));
+        if f64_world {
+            move_body(&floor_world::<f64>(), &Ellipsoid::sphere(0.5).unwrap(), &pos, &vel, None, o).map(|m| m.position)
+        } else {
+            let (pos, vel) = (pos.map(|x| x as f32), vel.map(|x| x as f32));
+            move_body(&floor_world::<f32>(), &Ellipsoid::sphere(0.5).unwrap(), &pos, &vel, None, o)
+                .map(|m| m.position.map(f64::from))
         }
+    };
+    type Set = fn(&mut MoveOptions, f64);
+    let fields: [(&str, Set); 2] = [
+        ("robust.rounding_ulps", |o, x| o.robust.rounding_ulps = x),
+        ("robust.feasible_ulps", |o, x| o.robust.feasible_ulps = x),
+    ];
+    for (name, set) in fields {
+        let mut o = MoveOptions::new(Response::Robust);
+        for ulps in [1e7, 1e300] {
+            set(&mut o, ulps);
+            assert_eq!(o.validate(), Ok(()), "{name}: the range depends on the backend");
+            match move_in(&o, false) {
+                Err(Error::InvalidArgument { what, .. }) => assert_eq!(what, name),
+                other => panic!("{name} {ulps:e}: {other:?}"),
+            }
+        }
+        set(&mut o, 0.5 / f64::from(f32::EPSILON / 2.0));
+        assert!(move_in(&o, false).is_ok(), "{name}");
+        set(&mut o, 1e7);
+        let f64_move = move_in(&o, true);
+        assert!(f64_move.is_ok(), "{name}: {f64_move:?}");
+        set(&mut o, 1e16);
+        assert!(matches!(move_in(&o, true), Err(Error::InvalidArgument { .. })), "{name}");
     }
-    o.robust.rounding_ulps = 0.5 / f64::from(f32::EPSILON / 2.0);
-    assert!(f32_move(&o).is_ok());
-    o.robust.rounding_ulps = 1e7;
-    let f64_move = move_body(
-        &floor_world::<f64>(),
-        &Ellipsoid::sphere(0.5).unwrap(),
-        &vec3(p[0], p[1], p[2]),
-        &vec3(v[0], v[1], v[2]),
-        None,
-        &o,
-    );
-    assert!(f64_move.is_ok(), "{f64_move:?}");
 }
 
 /// A displacement whose length in radii squared overflows `T` is an error,

@@ -359,7 +359,7 @@ fn pass<T: Real>(frame: &mut Frame<'_, T>, p: Vec3<T>, w: Vec3<T>, options: &Mov
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] for options out of range
-/// ([`MoveOptions::validate`], and `robust.rounding_ulps` beyond `1 / (2u)`
+/// ([`MoveOptions::validate`], and `robust.rounding_ulps` or `feasible_ulps` beyond `1 / (2u)`
 /// in `T`); [`Error::NonFinite`] if the position,
 /// velocity or gravity has a NaN or
 /// infinite coordinate; [`Error::InvalidArgument`] if, measured in the

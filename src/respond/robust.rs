@@ -133,7 +133,9 @@ pub struct RobustOptions {
     /// `parallel_ulps * u` count as parallel (default 1024).
     pub parallel_ulps: f64,
     /// A displacement counts as admissible for a plane when
-    /// `v . n >= -feasible_ulps * u * |v|` (default 64).
+    /// `v . n >= -feasible_ulps * u * |v|` (default 64); a remaining
+    /// displacement shorter than `feasible_ulps * u` of the pass's is
+    /// negligible. [`super::move_body`] refuses `feasible_ulps * u > 1/2`.
     pub feasible_ulps: f64,
     /// Push-out rounds for a body that starts embedded (default 8; each
     /// moves it at most about one radius, and a body that does not overlap
@@ -152,32 +154,49 @@ pub struct RobustOptions {
     pub rounding_ulps: f64,
 }
 
-/// `Ok` unless `opts.rounding_ulps * u` exceeds `1/2` in `T`: no precision
-/// of 2 bits or more (`u <= 1/4`) rounds a vector by more than `sqrt(3) /
-/// 4` of its magnitude, so a larger bound means no rounding and only
-/// lengthens the landing's unswept pushes, to `pad + 2 R` (a review,
-/// session 29: `1e7` in `f32`, `0.6` per unit, carried a body through a
-/// slot's wall; `1e300` gave an infinite position). The product is the
-/// same in the lab's replay, which scales `rounding_ulps` by the ratio of
-/// the unit roundoffs.
+/// `Ok` unless one of the tolerances counted in units of `u` exceeds half
+/// a unit in `T` (`x u > 1/2`):
+/// - `rounding_ulps`: no precision of 2 bits or more (`u <= 1/4`) rounds
+///   a vector by more than `sqrt(3) / 4` of its magnitude, so a larger
+///   bound means no rounding and only lengthens the landing's unswept
+///   pushes, to `pad + 2 R` (a review, session 29: `1e7` in `f32`, `0.6`
+///   per unit, carried a body through a slot's wall; `1e300` gave an
+///   infinite position);
+/// - `feasible_ulps`: a share of the displacement's length, a tolerance
+///   for the rounding of a few products; from 1 on the whole displacement
+///   counts as negligible and every pass ends `Blocked` where it started,
+///   even in empty space (a review, thirty-eighth session: `1e16` in
+///   `f64`). The default, 64, passes down to 7 bits; below, the robust
+///   response could not slide at all and is refused.
+///
+/// `parallel_ulps` is not bounded: the default, 1024, already makes every
+/// pair of planes parallel below 10 bits (the precision dial's 8 bits
+/// among them), and a larger value means no more than that: no crease is
+/// slid along, the body stops where two planes meet. The products are the
+/// same in the lab's replay, which scales the `*_ulps` fields by the ratio
+/// of the unit roundoffs.
 ///
 /// # Errors
-/// [`Error::InvalidArgument`] naming `robust.rounding_ulps`.
+/// [`Error::InvalidArgument`] naming the first field out of range.
 #[inline]
 pub(crate) fn check_rounding<T: Real>(opts: &RobustOptions) -> Result<(), Error> {
-    if opts.rounding_ulps * T::unit_roundoff() <= 0.5 { Ok(()) } else { Err(rounding_too_large::<T>(opts)) }
+    let fields = [("rounding_ulps", opts.rounding_ulps), ("feasible_ulps", opts.feasible_ulps)];
+    match fields.into_iter().find(|(_, x)| !(x * T::unit_roundoff() <= 0.5)) {
+        None => Ok(()),
+        Some((name, x)) => Err(ulps_too_large::<T>(name, x)),
+    }
 }
 
 /// The error of [`check_rounding`].
 #[cold]
-fn rounding_too_large<T: Real>(opts: &RobustOptions) -> Error {
+fn ulps_too_large<T: Real>(name: &str, x: f64) -> Error {
     Error::InvalidArgument {
-        what: "robust.rounding_ulps".into(),
+        what: format!("robust.{name}"),
         message: format!(
-            "times the unit roundoff of {} it must be at most 1/2 (no rounding is larger), got {} ({:e})",
+            "times the unit roundoff of {} it must be at most 1/2 (a tolerance for rounding, and no rounding is \
+             larger), got {x} ({:e}); the defaults need at least 7 bits",
             T::name(),
-            opts.rounding_ulps,
-            opts.rounding_ulps * T::unit_roundoff()
+            x * T::unit_roundoff()
         ),
     }
 }
