@@ -1002,6 +1002,35 @@ fn input_that_rounds_to_nothing_is_refused() {
         let out = sweepslide(&[&args[..], &["--precision", "f32", "--frames", "3"]].concat());
         assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     }
+    // A mesh's scene is steered, and its velocity rounded to `f32` every
+    // frame whatever the precision: `1e-50` left the body at rest in `f64`
+    // and `1e39` was reported as an infinite velocity, though finite (a
+    // review, thirty-eighth session).
+    let dir = std::env::temp_dir().join(format!("sweepslide-steered-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mesh = dir.join("floor.obj");
+    std::fs::write(&mesh, "v -5 0 -5\nv 5 0 5\nv 5 0 -5\nf 1 2 3\n").unwrap();
+    for (velocity, needle) in
+        [("--velocity=1e-50,0,0", "rounds to zero in f32"), ("--velocity=1e39,0,0", "rounds to infinity in f32")]
+    {
+        let out =
+            sweepslide(&["run", "--mesh", mesh.to_str().unwrap(), "--precision", "f64", velocity, "--frames", "3"]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{velocity}: {stderr}");
+        assert!(stderr.contains(needle) && stderr.contains("steered"), "{velocity}: {stderr}");
+    }
+    let out = sweepslide(&[
+        "run",
+        "--mesh",
+        mesh.to_str().unwrap(),
+        "--precision",
+        "f64",
+        "--velocity=0.1,0,0",
+        "--frames",
+        "3",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// A review's finding (twenty-sixth session): values given for a built-in
@@ -1124,6 +1153,13 @@ fn a_finding_run_with_another_response_or_precision_says_how_to_reproduce_it() {
     assert!(out.status.success(), "{said}");
     assert!(said.contains("records an unknown response `bogus`"), "{said}");
     assert!(said.contains("records an unknown precision `f99`") && !said.contains("pass --"), "{said}");
+    // Nor is a value that is no string passed over (a review, thirty-eighth
+    // session).
+    finding["response"] = 5.into();
+    std::fs::write(&bogus, finding.to_string()).unwrap();
+    let out = sweepslide(&["run", "--case", bogus.to_str().unwrap(), "--frames", "2"]);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(said.contains("records an unknown response `5`"), "{said}");
     std::fs::remove_file(&bogus).unwrap();
 }
 

@@ -310,6 +310,17 @@ fn a_report_says_which_scenes_have_triangles_degenerate_in_a_precision() {
         .unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     assert!(String::from_utf8_lossy(&output.stderr).contains("note: collapsing in f32: 1 triangle(s)"));
+    // Into one of its own shards (by another spelling of the path) it
+    // refuses, and leaves the shard as it was (a review, thirty-eighth
+    // session: the merged runs replaced the shard's).
+    let before = std::fs::read(out.join("runs.json")).unwrap();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_sweepslide"))
+        .args(["merge", dir.join("merged/../report").to_str().unwrap(), out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("is one of the shards"));
+    assert_eq!(std::fs::read(out.join("runs.json")).unwrap(), before);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

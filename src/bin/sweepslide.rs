@@ -237,24 +237,30 @@ fn scene_of(args: &RunArgs) -> Result<Scene, Error> {
     // runs the same ones (`sweepslide::lab::scenes`): values given for it
     // are rounded likewise. (Given as they were, `--start=0,5.1,0` started
     // the `f64` run at 5.1 and the `f32` run at 5.099999904632568.)
-    let input = |flag: &str, v: Option<[f64; 3]>| -> Result<Option<[f64; 3]>, Error> {
-        let Some(v) = v.filter(|_| built_in) else { return Ok(v) };
+    // A steered (random-walk) scene, such as a mesh's, rounds every frame's
+    // velocity to `f32` too ([`sweepslide::lab::scenes::Steering`]): a
+    // velocity given for one is checked likewise (a review: `1e-50`
+    // became a body at rest, `1e39` an "infinite" velocity, silently).
+    let why = built_in.then_some("a built-in scene's inputs are rounded (so that every precision runs the same ones)");
+    let steered = matches!(scene.motion, Motion::RandomWalk { .. })
+        .then_some("a steered scene's velocity is rounded every frame (so that every precision runs the same one)");
+    let input = |flag: &str, v: Option<[f64; 3]>, why: Option<&str>| -> Result<Option<[f64; 3]>, Error> {
+        let (Some(v), Some(why)) = (v, why) else { return Ok(v) };
         let rounded = v.map(|x| x as f32 as f64);
         match v.iter().zip(&rounded).find(|(x, r)| !r.is_finite() || (**r == 0.0) != (**x == 0.0)) {
             Some((x, r)) => Err(Error::InvalidArgument {
                 what: flag.into(),
                 message: format!(
-                    "{x:e} rounds to {} in f32, to which a built-in scene's inputs are rounded (so that every \
-                     precision runs the same ones)",
+                    "{x:e} rounds to {} in f32, to which {why}",
                     if r.is_finite() { "zero" } else { "infinity" }
                 ),
             }),
-            None => Ok(Some(rounded)),
+            None => Ok(Some(if built_in { rounded } else { v })),
         }
     };
-    let (start, gravity) = (input("--start", args.start)?, input("--gravity", args.gravity)?);
-    let velocity = input("--velocity", args.velocity)?;
-    let radii = input("--radius/--radii", args.radius.map(|r| [r; 3]).or(args.radii))?;
+    let (start, gravity) = (input("--start", args.start, why)?, input("--gravity", args.gravity, why)?);
+    let velocity = input("--velocity", args.velocity, why.or(steered))?;
+    let radii = input("--radius/--radii", args.radius.map(|r| [r; 3]).or(args.radii), why)?;
     if let Some(v) = start {
         scene.start = v;
     }
@@ -327,7 +333,10 @@ fn note_finding(path: &std::path::Path, args: &RunArgs) {
         _ => Precision::parse(value).is_ok(),
     };
     for (key, used) in [("response", response), ("precision", precision)] {
-        if let Some(recorded) = finding.get(key).and_then(|v| v.as_str()).filter(|r| !r.eq_ignore_ascii_case(&used)) {
+        // A value that is no string (`"response": 5`) is an unknown one,
+        // said like any other (a review: it was passed over in silence).
+        let recorded = finding.get(key).map(|v| v.as_str().map_or_else(|| v.to_string(), str::to_string));
+        if let Some(recorded) = recorded.as_deref().filter(|r| !r.eq_ignore_ascii_case(&used)) {
             if known(key, recorded) {
                 eprintln!(
                     "note: {} records {key} `{recorded}`; this run uses `{used}` (pass --{key} {recorded} to reproduce \
@@ -523,7 +532,16 @@ fn report_command(args: &ReportArgs) -> Result<(), Failure> {
                 what: flag.into(),
                 message: format!("{} is not a directory", dir.display()),
             })),
-            Some(dir) => Ok(list(dir)),
+            Some(dir) => {
+                // An empty directory is how a report leaves the default's
+                // files out; said, not silent (a review: the report ran
+                // without, saying only "(0 meshes)").
+                let found = list(dir);
+                if found.is_empty() {
+                    eprintln!("note: nothing in {}: the report runs without {}", dir.display(), &flag[2..]);
+                }
+                Ok(found)
+            }
             None => {
                 let found = list(std::path::Path::new(default));
                 // The default is relative to the working directory: say when
@@ -630,6 +648,18 @@ fn warn_failed(runs: &sweepslide::report::Runs) {
 
 fn merge_command(out: &std::path::Path, shards: &[PathBuf]) -> Result<(), Failure> {
     use sweepslide::report::{merge, read_runs, render, write_runs};
+    // Writing into a shard's own directory would overwrite it (a review:
+    // `merge x1 x1 x2` replaced shard 1's runs with the merged ones).
+    let same = |a: &std::path::Path, b: &std::path::Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if let Some(shard) = shards.iter().find(|d| same(out, d)) {
+        return Err(Failure(Error::InvalidArgument {
+            what: "merge OUT".into(),
+            message: format!("{} is one of the shards: write the merged report elsewhere", shard.display()),
+        }));
+    }
     let parts = shards.iter().map(|d| read_runs(d)).collect::<Result<Vec<_>, _>>()?;
     let runs = merge(parts)?;
     write_runs(out, &runs)?;
