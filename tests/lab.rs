@@ -1164,13 +1164,13 @@ fn a_finding_run_with_another_response_or_precision_says_how_to_reproduce_it() {
 }
 
 /// The random search on a few trials: every finding is what its kind says
-/// (penetration, NaN, jitter, freeze), comes with the command that reproduces it,
+/// (penetration, NaN, jitter, wobble, freeze, drift), comes with the command that reproduces it,
 /// and none is the robust response's; the faithful ones fail somewhere.
 #[test]
 fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
     use sweepslide::lab::search::{FREEZE, FailureKind, search};
-    // A seed whose 40 trials include a freeze and an ellipsoid's finding (a
-    // change to the families or their draws may need another).
+    // A seed whose 40 trials include a freeze, a wobble and an ellipsoid's
+    // finding (a change to the families or their draws may need another).
     let outcome = search(8, 40, 1, &[], &|_| {}).unwrap();
     assert_eq!(outcome.trials.values().sum::<usize>(), 40);
     assert!(outcome.trials.keys().all(|f| !f.starts_with("mesh:")), "{:?}", outcome.trials);
@@ -1178,12 +1178,13 @@ fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
     let findings = outcome.findings;
     assert!(findings.iter().any(|f| f.result.response != "robust"), "no finding in 40 trials");
     assert!(findings.iter().any(|f| f.kind == FailureKind::Freeze), "no freeze in 40 trials");
+    assert!(findings.iter().any(|f| f.kind == FailureKind::Wobble), "no zigzag along a slide in 40 trials");
     assert!(findings.iter().any(|f| f.command.contains("--radii=")), "no ellipsoid's finding in 40 trials");
     for f in &findings {
         let r = &f.result;
         assert_ne!(r.response, "robust", "{f:?}");
         // An ellipsoid has no ideal slide to freeze against or drift from.
-        let slides = matches!(f.kind, FailureKind::Freeze | FailureKind::Drift);
+        let slides = matches!(f.kind, FailureKind::Freeze | FailureKind::Drift | FailureKind::Wobble);
         assert!(!(f.command.contains("--radii=") && slides), "{f:?}");
         match f.kind {
             FailureKind::Penetration => assert!(r.penetrating_frames > 0 && f.value > 0.0, "{f:?}"),
@@ -1191,6 +1192,7 @@ fn random_search_findings_are_what_they_say_and_none_is_the_robust_responses() {
             FailureKind::Jitter => assert!(r.jitter > 1e-3, "{f:?}"),
             FailureKind::Freeze => assert!(r.snag.is_some_and(|s| s < FREEZE && s == f.value), "{f:?}"),
             FailureKind::Drift => assert!(r.drift.is_some_and(|d| d >= DRIFT_THRESHOLD && d == f.value), "{f:?}"),
+            FailureKind::Wobble => assert!(r.wobble > 1e-3 && r.wobble == f.value, "{f:?}"),
         }
         let base = r.scene.split([':', '@']).next().unwrap();
         assert!(f.command.starts_with(&format!("sweepslide run --scene {base}")), "{f:?}");

@@ -3,13 +3,13 @@
 //! responses. Every failure comes with the `sweepslide run` command that
 //! reproduces it.
 //!
-//! Five kinds are looked for: penetration and NaN positions in every run,
-//! jitter where the ideal is rest (corners, the dead end), freezes and
-//! drift off the ideal's line where the ideal is a slide (folds, creases,
-//! wedges, slots, the floors: tessellated, tilted and messy), each judged
-//! by the lab's exact metrics. One trial in four moves an ellipsoid
-//! instead of the scene's own body; it has no ideal slide, so its runs are
-//! checked for all but freezes and drift.
+//! Six kinds are looked for: penetration and NaN positions in every run,
+//! jitter where the ideal is rest (corners, the dead end), and freezes,
+//! drift off the ideal's line and wobble (a zigzag) where the ideal is a
+//! slide (folds, creases, wedges, slots, the floors: tessellated, tilted
+//! and messy), each judged by the lab's exact metrics. One trial in four
+//! moves an ellipsoid instead of the scene's own body; it has no ideal
+//! slide, so its runs are checked for all but freezes, drift and wobble.
 
 use super::metrics::{DRIFT_THRESHOLD, JITTER_THRESHOLD, penetration};
 use super::rng::Rng;
@@ -37,6 +37,13 @@ pub enum FailureKind {
     /// progress than half the path, still there in a run four times as
     /// long).
     Jitter,
+    /// The body zigzagged where it should slide: in a scene with an ideal
+    /// slide its wobble ([`super::metrics::wobble`]) over the last quarter
+    /// exceeded [`JITTER_THRESHOLD`] plus what rounding its positions can
+    /// give ([`WOBBLE_ROUNDING`]) beyond the least wobble of the other
+    /// responses in the same trial and precision, and still did in a run
+    /// four times as long.
+    Wobble,
     /// The body stopped where it should slide: in a scene with an ideal
     /// slide it covered less than [`FREEZE`] of the ideal distance (the
     /// snag ratio), though each frame's ideal step was at least
@@ -309,15 +316,15 @@ fn drift_rounding(radii: &[f64; 3], start: &[f64; 3], end: &[f64; 3], frames: us
     DRIFT_ROUNDING * (frames + 1) as f64 * position_rounding(start, end, precision) / smallest_radius
 }
 
-/// How much more `drift` is than the least of the other responses' drifts
-/// in the same trial and precision (`others`; those without one left
-/// out, all of it where none has one). Exact collide-and-slide gives one
+/// How much more `value` (a drift, a wobble) is than the least of the
+/// other responses' in the same trial and precision (`others`; those
+/// without one left out, all of it where none has one). Exact collide-and-slide gives one
 /// trajectory; what all three responses share is the scene's or the
 /// precision's (a body that a push too slow to show above the positions'
 /// rounding still lowers onto a floor `4.6e3` out in `f32`, drifting
 /// `0.05` radii in all three), not a response's.
-fn drift_beyond_others(drift: f64, others: impl Iterator<Item = Option<f64>>) -> f64 {
-    drift - others.flatten().reduce(f64::min).unwrap_or(0.0)
+fn beyond_others(value: f64, others: impl Iterator<Item = Option<f64>>) -> f64 {
+    value - others.flatten().reduce(f64::min).unwrap_or(0.0)
 }
 
 /// Whether every frame of a trajectory's last quarter ended on the scene's
@@ -347,14 +354,22 @@ fn back_and_forth(frames: &[FrameRecord]) -> bool {
 }
 
 /// A short run may end while a slow body is still arriving, whose bent path
-/// looks like jitter; a jitter finding counts only if a run four times as
-/// long still shows it.
-fn confirm_jitter(cfg: &RunConfig) -> Result<bool, Error> {
+/// looks like jitter (or whose landing's bounce looks like wobble): a
+/// finding counts only if a run four times as long still shows it,
+/// `still` of that run's result.
+fn confirm(cfg: &RunConfig, still: impl Fn(&RunResult) -> bool) -> Result<bool, Error> {
     let mut scene = (*cfg.scene).clone();
     scene.frames *= 4;
     let longer = RunConfig { scene: Arc::new(scene), ..cfg.clone() };
-    Ok(super::runner::run(&longer)?.result.jitter > JITTER_THRESHOLD)
+    Ok(still(&super::runner::run(&longer)?.result))
 }
+
+/// A wobble counts only beyond this many unit roundoffs of the largest
+/// coordinate the run held, over the speed: each step difference spans
+/// three rounded positions, each off by up to `sqrt(3) u` of that
+/// coordinate, so rounding alone can give up to about `2 sqrt(3)`
+/// ([`super::metrics::wobble`] halves the total variation); twice that.
+pub const WOBBLE_ROUNDING: f64 = 7.0;
 
 /// The most trials one search runs: a million trials are six million
 /// runs, days on two cores.
@@ -452,8 +467,10 @@ fn judge(plan: &[(Trial, RunConfig)], jobs: usize, findings: &mut Vec<Finding>) 
     let outputs = run_all(&configs, jobs, &|_| {})?;
     // Each trial's drift in each precision, for every response (the plan
     // runs them one after the other): the others' least is the control of
-    // a response's drift ([`drift_beyond_others`]).
+    // a response's drift ([`beyond_others`]).
     let drifts: Vec<Option<f64>> = outputs.iter().map(|o| o.as_ref().ok().and_then(|o| o.result.drift)).collect();
+    let wobbles: Vec<Option<f64>> =
+        outputs.iter().map(|o| o.as_ref().ok().map(|o| o.result.wobble).filter(|w| !w.is_nan())).collect();
     for (i, ((t, cfg), out)) in plan.iter().zip(outputs).enumerate() {
         // A run that fails is a defect of the search (its scenes are valid
         // input), reported with the command that reproduces it.
@@ -462,6 +479,7 @@ fn judge(plan: &[(Trial, RunConfig)], jobs: usize, findings: &mut Vec<Finding>) 
             message: e.to_string(),
         })?;
         let r = out.result;
+        let group = i - i % Response::ALL.len();
         let mut found = |kind, value: f64| {
             findings.push(Finding { kind, value, result: r.clone(), command: command(t, cfg.response, cfg.precision) });
         };
@@ -476,7 +494,11 @@ fn judge(plan: &[(Trial, RunConfig)], jobs: usize, findings: &mut Vec<Finding>) 
         if r.nan_frames > 0 {
             found(FailureKind::Nan, r.nan_frames as f64);
         }
-        if t.rest && r.jitter > JITTER_THRESHOLD && back_and_forth(&out.frames) && confirm_jitter(cfg)? {
+        if t.rest
+            && r.jitter > JITTER_THRESHOLD
+            && back_and_forth(&out.frames)
+            && confirm(cfg, |r| r.jitter > JITTER_THRESHOLD)?
+        {
             found(FailureKind::Jitter, r.jitter);
         }
         if let (Some(snag), Some(ideal)) = (r.snag, &cfg.scene.ideal)
@@ -485,11 +507,22 @@ fn judge(plan: &[(Trial, RunConfig)], jobs: usize, findings: &mut Vec<Finding>) 
         {
             found(FailureKind::Freeze, snag);
         }
+        if cfg.scene.ideal.is_some() && !t.rest {
+            // The speed the run's wobble is relative to (its first push).
+            let push = if cfg.scene.velocity == [0.0; 3] { &cfg.scene.gravity } else { &cfg.scene.velocity };
+            let speed = push.iter().map(|v| v * v).sum::<f64>().sqrt();
+            let rounding =
+                WOBBLE_ROUNDING * position_rounding(&cfg.scene.start, &r.final_position, cfg.precision) / speed;
+            let others = (group..group + Response::ALL.len()).filter(|&j| j != i).map(|j| wobbles[j]);
+            let limit = JITTER_THRESHOLD + rounding;
+            if beyond_others(r.wobble, others) > limit && confirm(cfg, |r| r.wobble > limit)? {
+                found(FailureKind::Wobble, r.wobble);
+            }
+        }
         let rounding = drift_rounding(&cfg.scene.radii, &cfg.scene.start, &r.final_position, r.frames, cfg.precision);
-        let group = i - i % Response::ALL.len();
         let others = (group..group + Response::ALL.len()).filter(|&j| j != i).map(|j| drifts[j]);
         if let Some(drift) = r.drift
-            && drift_beyond_others(drift, others) >= DRIFT_THRESHOLD + rounding
+            && beyond_others(drift, others) >= DRIFT_THRESHOLD + rounding
             && on_surfaces(&out.frames, &cfg.scene.radii, rounding)
         {
             found(FailureKind::Drift, drift);
@@ -500,15 +533,15 @@ fn judge(plan: &[(Trial, RunConfig)], jobs: usize, findings: &mut Vec<Finding>) 
 
 #[cfg(test)]
 mod tests {
-    use super::{drift_beyond_others, shell_word};
+    use super::{beyond_others, shell_word};
 
     /// A drift is judged against the least of the others' (those that
     /// have one), or against none where no other response has one.
     #[test]
     fn a_drift_counts_beyond_the_least_other_drift() {
-        assert_eq!(drift_beyond_others(0.05, [Some(0.048), None].into_iter()), 0.05 - 0.048);
-        assert_eq!(drift_beyond_others(0.05, [Some(0.01), Some(0.03)].into_iter()), 0.05 - 0.01);
-        assert_eq!(drift_beyond_others(0.07, [None, None].into_iter()), 0.07);
+        assert_eq!(beyond_others(0.05, [Some(0.048), None].into_iter()), 0.05 - 0.048);
+        assert_eq!(beyond_others(0.05, [Some(0.01), Some(0.03)].into_iter()), 0.05 - 0.01);
+        assert_eq!(beyond_others(0.07, [None, None].into_iter()), 0.07);
     }
 
     /// A review's finding (twenty-sixth session): a mesh path with a space
