@@ -375,8 +375,8 @@ pub fn evaluate(runs: &Runs) -> Vec<Claim> {
                 String::new()
             } else {
                 format!(
-                    " (left out: {unsettled} runs with an ideal slide that no frame moved as, still approaching \
-                     its surfaces when the run ended)"
+                    " (left out: {unsettled} runs with an ideal slide that no frame moved as: still approaching \
+                     its surfaces when the run ended, or never steady, which jitter and wobble show)"
                 )
             }
         ),
