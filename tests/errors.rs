@@ -379,6 +379,14 @@ fn obj_bad_number() {
     obj_error("# header\n\nv 1.0 2.0 3.0.0\n", 3, "not a number");
 }
 
+/// A control character in a quoted word is escaped, not written to the
+/// terminal (a review, thirty-eighth session: a NUL byte of an index).
+#[test]
+fn obj_error_escapes_control_characters() {
+    obj_error(&format!("{V4}f 1 2 3\u{0}\n"), 5, "`3\\0`");
+    obj_error(&format!("{V4}v 1 \u{1b}[31m 2\n"), 5, "`\\u{1b}[31m` is not a number");
+}
+
 /// A review's finding (twenty-sixth session): the message quoted the
 /// offending word whole, so a 2 MB line gave a 2 MB error. The quoted word
 /// is cut now, saying how long it was, and the message still says what is

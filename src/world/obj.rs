@@ -64,15 +64,22 @@ const QUOTED_CHARS: usize = 60;
 
 /// A word of the file as an error message quotes it: in backticks, cut to
 /// [`QUOTED_CHARS`] characters (saying how long it was), so that what is
-/// wrong with it still shows.
+/// wrong with it still shows, with control characters escaped (`\0`,
+/// `\u{1b}`: a review found a NUL byte of an index written raw to the
+/// terminal).
 struct Quoted<'a>(&'a str);
 
 impl std::fmt::Display for Quoted<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.0.char_indices().nth(QUOTED_CHARS) {
-            None => write!(f, "`{}`", self.0),
-            Some((end, _)) => write!(f, "`{}...` ({} characters)", &self.0[..end], self.0.chars().count()),
+        let (shown, cut) = match self.0.char_indices().nth(QUOTED_CHARS) {
+            None => (self.0, false),
+            Some((end, _)) => (&self.0[..end], true),
+        };
+        f.write_str("`")?;
+        for c in shown.chars() {
+            if c.is_control() { write!(f, "{}", c.escape_debug())? } else { write!(f, "{c}")? }
         }
+        if cut { write!(f, "...` ({} characters)", self.0.chars().count()) } else { f.write_str("`") }
     }
 }
 
