@@ -261,6 +261,19 @@ impl Near {
     }
 }
 
+/// The positions that bound the last `K = max(1, n / 4)` of the `n`
+/// displacements of `positions` (`K + 1` of them, none without a
+/// displacement), exact at [`judge_bits`]: the window of [`jitter`] and
+/// [`wobble`]. `None` when a position is NaN or infinite.
+fn exact_tail<T: Real>(positions: &[Vec3<T>]) -> Option<Vec<V>> {
+    if positions.iter().any(|p| !p.iter().all(Real::is_finite)) {
+        return None;
+    }
+    let n = positions.len().saturating_sub(1);
+    let first = if n == 0 { positions.len() } else { positions.len() - 1 - (n / 4).max(1) };
+    Some(positions[first..].iter().map(exact).collect())
+}
+
 /// Jitter above this counts as jitter (a tenth of a percent of the speed):
 /// the threshold of the report's claims and of the random search.
 pub const JITTER_THRESHOLD: f64 = 1e-3;
@@ -277,16 +290,11 @@ pub const JITTER_THRESHOLD: f64 = 1e-3;
 /// NaN or infinite.
 #[must_use]
 pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
-    let n = positions.len().saturating_sub(1);
-    if positions.iter().any(|p| !p.iter().all(Real::is_finite)) {
-        return f64::NAN;
-    }
-    if n == 0 || !(speed > 0.0) {
+    let Some(exact_tail) = exact_tail(positions) else { return f64::NAN };
+    let k = exact_tail.len().saturating_sub(1);
+    if k == 0 || !(speed > 0.0) {
         return 0.0;
     }
-    let k = (n / 4).max(1);
-    let tail = &positions[positions.len() - 1 - k..];
-    let exact_tail: Vec<V> = tail.iter().map(exact).collect();
     let norm = |d: &V| dot(d, d).sqrt();
     let mut path = Float::new(judge_bits::<T>());
     for w in exact_tail.windows(2) {
@@ -323,15 +331,11 @@ pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
 /// NaN or infinite.
 #[must_use]
 pub fn wobble<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
-    let n = positions.len().saturating_sub(1);
-    if positions.iter().any(|p| !p.iter().all(Real::is_finite)) {
-        return f64::NAN;
-    }
-    let k = (n / 4).max(1);
+    let Some(tail) = exact_tail(positions) else { return f64::NAN };
+    let k = tail.len().saturating_sub(1);
     if k < 2 || !(speed > 0.0) {
         return 0.0;
     }
-    let tail: Vec<V> = positions[positions.len() - 1 - k..].iter().map(exact).collect();
     let steps: Vec<V> = tail.windows(2).map(|w| sub(&w[1], &w[0])).collect();
     let norm = |d: &V| dot(d, d).sqrt();
     let mut variation = Float::new(judge_bits::<T>());
