@@ -800,7 +800,8 @@ fn the_replay_keeps_the_resting_band_far_from_the_origin() {
 
 /// A velocity that is a positive multiple of the scene's keeps the ideal
 /// slide, scaled, so a search finding's command reports the snag ratio it
-/// was found with; any other velocity, or gravity, drops it.
+/// was found with; any other velocity, or gravity that the surfaces do not
+/// take whole, drops it.
 #[test]
 fn a_scaled_velocity_scales_the_ideal_slide() {
     use sweepslide::lab::scenes::build;
@@ -814,6 +815,15 @@ fn a_scaled_velocity_scales_the_ideal_slide() {
     assert_eq!(wedge.clone().with_velocity([0.0; 3]).ideal, None, "no motion");
     let falling = sweepslide::lab::scenes::Scene { gravity: [0.0, -0.01, 0.0], ..wedge.clone() };
     assert_eq!(falling.with_velocity(wedge.velocity).ideal, None, "gravity");
+    // On a floor that takes the gravity whole (the ideal is the push, the
+    // gravity perpendicular to it) the ideal stays; a gravity with a part
+    // along the push drops it.
+    let messy = build("messy-floor:12", 1).unwrap();
+    assert_eq!(messy.ideal, Some(messy.velocity));
+    let doubled = messy.velocity.map(|v| v * 2.0);
+    assert_eq!(messy.clone().with_velocity(doubled).ideal, Some(doubled), "a floor under gravity");
+    let tilted = sweepslide::lab::scenes::Scene { gravity: [0.01, -0.02, 0.0], ..messy.clone() };
+    assert_eq!(tilted.with_velocity(doubled).ideal, None, "gravity along the push");
     let snag = |v: &str| {
         let out = sweepslide(&["run", "--scene", "wedge", "--frames", "300", &format!("--velocity={v}")]);
         assert!(out.status.success(), "{out:?}");

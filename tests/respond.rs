@@ -695,6 +695,62 @@ fn contact_normals_map_back_to_the_world<T: Real>() {
     assert!(off <= 64.0 * T::unit_roundoff(), "{}: {world_normal:?} against {expected:?}", T::name());
 }
 
+/// `move_bodies` on two threads returns what `move_body` returns for each
+/// body in turn, bit for bit (compared through `Debug`, so that the
+/// faithful responses' NaN positions compare too), errors included, over
+/// frames of many bodies on the messy floor (T-junctions, slivers, doubled
+/// tiles): walking, landing, starting embedded, with and without gravity,
+/// fast and slow, with each response.
+fn a_batch_on_two_threads_equals_the_moves_one_by_one<T: Real>() {
+    use sweepslide::respond::{BodyMove, move_bodies};
+    let s = scene("messy-floor:12");
+    let world = World::<T>::new(s.mesh.clone()).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let mut rng = sweepslide::lab::rng::Rng::new(11);
+    let mut moves: Vec<BodyMove<T>> = (0..96)
+        .map(|i| {
+            let radii = if i % 3 == 0 { [0.5; 3] } else { [0.4, 0.9, 0.4] };
+            let height = [1.2, radii[1], 0.6 * radii[1]][i % 3];
+            let speed = 10f64.powf(rng.range(-4.0, 0.5));
+            let heading = rng.range(0.0, std::f64::consts::TAU);
+            BodyMove {
+                body: Ellipsoid::<T>::new(radii).unwrap(),
+                position: v([rng.range(-5.5, 5.5), height, rng.range(-5.5, 5.5)]),
+                velocity: v([speed * heading.cos(), rng.range(-0.1, 0.1), speed * heading.sin()]),
+                gravity: (i % 2 == 0).then(|| v([0.0, -0.02, 0.0])),
+            }
+        })
+        .collect();
+    // One body the frame refuses: its position is not finite.
+    moves[7].position = v([f64::NAN, 1.0, 0.0]);
+    for response in Response::ALL {
+        let opts = MoveOptions::new(response);
+        let mut frame = moves.clone();
+        for k in 0..12 {
+            let batch = pool.install(|| move_bodies(&world, &frame, &opts));
+            assert_eq!(batch.len(), frame.len());
+            let mut errors = 0;
+            for (i, (m, b)) in frame.iter_mut().zip(batch).enumerate() {
+                let one = move_body(&world, &m.body, &m.position, &m.velocity, m.gravity.as_ref(), &opts);
+                let what = format!("{response:?} {} frame {k} body {i}", T::name());
+                match (b, one) {
+                    (Ok(b), Ok(one)) => {
+                        assert_eq!(format!("{b:?}"), format!("{one:?}"), "{what}");
+                        m.position = b.position;
+                    }
+                    (Err(b), Err(one)) => {
+                        assert_eq!(b.to_string(), one.to_string(), "{what}");
+                        errors += 1;
+                    }
+                    (b, one) => panic!("{what}: the batch gave {b:?}, one by one {one:?}"),
+                }
+            }
+            assert!(errors >= 1, "{response:?} frame {k}: the body at NaN was refused");
+        }
+    }
+}
+
 per_backend! {
     contact_normals_map_back => contact_normals_map_back_to_the_world;
+    a_batch_equals_the_moves_one_by_one => a_batch_on_two_threads_equals_the_moves_one_by_one;
 }

@@ -31,8 +31,8 @@ enum Command {
     Report(ReportArgs),
     /// Search random scenes (angles, clearances, speeds, offsets; spheres and
     /// ellipsoids; with --meshes, bodies over real meshes too) for
-    /// penetration, NaN, jitter, freezes and drift, and print how to reproduce each
-    /// failure.
+    /// penetration, NaN, jitter, freezes, drift and wobble, and print how to
+    /// reproduce each failure.
     Search {
         /// Seed of the search.
         #[arg(long, default_value_t = 1, allow_negative_numbers = true)]

@@ -322,7 +322,7 @@ pub fn jitter<T: Real>(positions: &[Vec3<T>], speed: f64) -> f64 {
 /// speed)` there, and `a / speed` here. A review (thirty-eighth session)
 /// found Fauerby's response zigzagging by +-2.5 degrees every frame along
 /// `fold:5` in `f64` with a jitter of `6.7e-4`, below
-/// [`JITTER_THRESHOLD`]; its wobble is `3.1e-2`.
+/// [`JITTER_THRESHOLD`]; its wobble is `3.0e-2`.
 ///
 /// Computed at [`judge_bits`] from the stored positions (the steps and
 /// their differences exact, the norms rounded by a relative `2^-bits`);

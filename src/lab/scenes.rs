@@ -759,18 +759,27 @@ impl Scene {
 
     /// The scene pushed by `velocity` per frame instead. Its ideal slide is
     /// kept, scaled by `k`, where `velocity` is `k > 0` times the scene's
-    /// own up to `1e-6` of its length, the motion is constant and there is
-    /// no gravity: a frictionless slide against fixed planes is the
-    /// velocity's projection onto a convex cone, which scales with a
-    /// positive factor and moves by at most as much as the velocity does,
-    /// so the scaled ideal is off by at most `1e-6 |velocity|` per frame.
-    /// Otherwise the ideal is dropped (no snag ratio is reported).
+    /// own up to `1e-6` of its length, the motion is constant, and either
+    /// there is no gravity or the surfaces take the gravity whole (the
+    /// scene's ideal is its push, and the gravity is perpendicular to it:
+    /// a body walking on a floor normal to the gravity, as on
+    /// `messy-floor`). A frictionless slide against fixed planes is the
+    /// projection of the displacement onto a convex cone `C`, which scales
+    /// with a positive factor and moves by at most as much as the
+    /// displacement does, so the scaled ideal is off by at most
+    /// `1e-6 |velocity|` per frame. Under gravity `g` with ideal `v`, the
+    /// push itself: `v` lies in `C`, `g` in its polar cone and `v . g = 0`,
+    /// which by Moreau's decomposition makes `k v` the projection of
+    /// `k v + g` for every `k > 0`. Otherwise the ideal is dropped (no snag
+    /// ratio is reported).
     #[must_use]
     pub fn with_velocity(self, velocity: [f64; 3]) -> Scene {
         let (old, new) = (Vector3::from(self.velocity), Vector3::from(velocity));
         let k = new.dot(&old) / old.norm_squared();
         let parallel = k > 0.0 && (new - old * k).norm() <= 1e-6 * new.norm();
-        let keeps = parallel && matches!(self.motion, Motion::Constant) && self.gravity == [0.0; 3];
+        let gravity_taken = self.gravity == [0.0; 3]
+            || (self.ideal == Some(self.velocity) && Vector3::from(self.gravity).dot(&old) == 0.0);
+        let keeps = parallel && matches!(self.motion, Motion::Constant) && gravity_taken;
         let ideal = self.ideal.filter(|_| keeps).map(|i| i.map(|v| v * k));
         Scene { velocity, ideal, ..self }
     }
