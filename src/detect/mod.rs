@@ -465,8 +465,17 @@ impl<T: Real> Reach<T> {
     /// itself for its own rounding.
     #[must_use]
     pub fn of_frame(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>]) -> Self {
+        Self::of_frame_within(body, position, moves, REACH_MARGIN)
+    }
+
+    /// [`Reach::of_frame`] with `margin` radii (eSpace) instead of
+    /// [`REACH_MARGIN`]: the robust response reaches farther where the
+    /// final rounding of a position can undo its skin
+    /// ([`crate::respond::robust`]'s `skin_margin`).
+    #[must_use]
+    pub fn of_frame_within(body: &Ellipsoid<T>, position: &Vec3<T>, moves: &[&Vec3<T>], margin: f64) -> Self {
         let length = moves.iter().fold(T::zero(), |r, m| r + norm(&body.to_espace(m)));
-        let radius = T::c(REACH_MARGIN) + length;
+        let radius = T::c(margin) + length;
         let radius = radius.clone() + radius * T::c(4.0 * T::unit_roundoff());
         Reach::around(body, position, &Vec3::zeros(), &radius.clone(), position.clone(), radius)
     }

@@ -24,8 +24,8 @@ pub use linahan::LinahanOptions;
 pub use robust::RobustOptions;
 
 use crate::detect::{
-    DetectOptions, Detection, Hit, Neighbourhood, Proximity, Reach, check_finite, check_in_radii, earliest_hit,
-    espace_magnitude,
+    DetectOptions, Detection, Hit, Neighbourhood, Proximity, REACH_MARGIN, Reach, check_finite, check_in_radii,
+    earliest_hit, espace_magnitude,
 };
 use crate::error::{count, not_negative, out_of_range, positive};
 use crate::geom::{Ellipsoid, Vec3, norm};
@@ -255,6 +255,11 @@ pub(crate) struct Frame<'w, T: Real> {
     /// The robust response's resting contacts at the current position, by
     /// their position in `hood`, found at the end of each pass for the next.
     pub resting: SmallVec<[usize; 16]>,
+    /// How far beyond the radii (eSpace) the frame's gathers reach around
+    /// the body's path: [`crate::detect::REACH_MARGIN`], or, for the robust
+    /// response where the final rounding can undo the skin, as far as its
+    /// scans and pushes then look (`robust::skin_margin`).
+    pub margin: f64,
     /// How much wider than `2 pad` the robust response's resting band is:
     /// twice the final rounding's bound where that rounding can exceed
     /// `pad / 2` (`robust::final_rounding`), else zero.
@@ -301,7 +306,8 @@ impl<T: Real> Frame<'_, T> {
     /// As [`Neighbourhood::gather`].
     pub fn regather(&mut self, p: &Vec3<T>) -> Result<(), Error> {
         let pushed = self.body.from_espace(p);
-        let reach = Reach::of_frame(self.body, &self.hood.origin, &[&self.moves[0], &self.moves[1], &pushed]);
+        let moves = [&self.moves[0], &self.moves[1], &pushed];
+        let reach = Reach::of_frame_within(self.body, &self.hood.origin, &moves, self.margin);
         self.hood.gather(self.world, self.body, &reach)
     }
 
@@ -402,7 +408,7 @@ pub fn move_body<T: Real>(
         Response::Robust => position.clone(),
         Response::Fauerby | Response::Linahan => Vec3::zeros(),
     };
-    let reach = Reach::of_frame(body, position, &[velocity, gravity]);
+    let mut reach = Reach::of_frame(body, position, &[velocity, gravity]);
     let trace = Trace {
         iterations: 0,
         pass_iterations: 0,
@@ -414,6 +420,21 @@ pub fn move_body<T: Real>(
     let moves = [velocity.clone(), gravity.clone()];
     let start_magnitude = espace_magnitude(body, position);
     check_in_radii(start_magnitude, &reach)?;
+    // Where the final rounding can undo the robust response's skin, its
+    // resting band is twice the rounding's bound wider and the gathers
+    // reach as far as the scans and the pushes that restore the skin look.
+    let travel = reach.radius.to_f64();
+    let rounding = match options.response {
+        Response::Robust => {
+            robust::check_final_rounding::<T>(start_magnitude, travel)?;
+            robust::final_rounding::<T>(start_magnitude, travel, &options.robust)
+        }
+        Response::Fauerby | Response::Linahan => None,
+    };
+    let margin = rounding.map_or(REACH_MARGIN, |r| robust::skin_margin(r, &options.robust));
+    if margin > REACH_MARGIN {
+        reach = Reach::of_frame_within(body, position, &[velocity, gravity], margin);
+    }
     let mut frame = Frame {
         world,
         body,
@@ -424,7 +445,8 @@ pub fn move_body<T: Real>(
         moves,
         start_magnitude,
         resting: SmallVec::new(),
-        band: T::zero(),
+        margin,
+        band: T::c(2.0 * rounding.unwrap_or(0.0)),
         planes: SmallVec::new(),
         met: SmallVec::new(),
         seeds: SmallVec::new(),
@@ -451,9 +473,6 @@ pub fn move_body<T: Real>(
     let mut p = start.clone();
     let still = |v: &Vec3<T>| v.iter().all(T::is_zero);
     if options.response == Response::Robust {
-        if let Some(r) = robust::final_rounding::<T>(start_magnitude, reach.radius.to_f64(), &options.robust) {
-            frame.band = T::c(2.0 * r);
-        }
         p = robust::start(&mut frame, p, !(still(velocity) && still(gravity)), &options.robust)?;
     }
     for (vel_e, parts) in passes {
@@ -471,7 +490,7 @@ pub fn move_body<T: Real>(
     let position = if p == start {
         position.clone()
     } else if options.response == Response::Robust {
-        robust::land(&mut frame, &p, &origin, reach.radius.to_f64(), &options.robust)
+        robust::land(&mut frame, &p, &origin, travel, &options.robust)?
     } else {
         body.from_espace(&p) + &origin
     };

@@ -96,7 +96,7 @@
 //! skin restored.
 
 use super::{Frame, StopReason};
-use crate::detect::{Candidate, DetectOptions, Detection, Hit, closest_point, proximity};
+use crate::detect::{Candidate, DetectOptions, Detection, Hit, REACH_MARGIN, closest_point, proximity};
 use crate::geom::{Feature, Triangle, Vec3, cross, dot, max_abs, norm, norm_squared, normalize, to_f64};
 use crate::world::INTERNAL_EDGE_DEGREES;
 use crate::{Error, Real};
@@ -881,13 +881,13 @@ pub(crate) fn land<T: Real>(
     origin: &Vec3<T>,
     reach: f64,
     opts: &RobustOptions,
-) -> Vec3<T> {
+) -> Result<Vec3<T>, Error> {
     let (rounding, least_pad) =
         rounding_and_least_pad::<T>(frame.start_magnitude, reach + frame.trace.depenetration, opts);
     let d = frame.body.from_espace(p);
-    if rounding >= 0.5 * least_pad {
+    Ok(if rounding >= 0.5 * least_pad {
         let world = d + origin;
-        land_checked(frame, world, origin, rounding, opts)
+        land_checked(frame, world, origin, rounding, opts)?
     } else if rounding >= 0.25 * least_pad {
         // From a quarter of the least padding on, rounded to nearest frame
         // after frame, a body sliding along a crease can walk into it by
@@ -901,7 +901,24 @@ pub(crate) fn land<T: Real>(
         off_contacts(frame, &d, origin, rounding, opts)
     } else {
         d + origin
-    }
+    })
+}
+
+/// How far beyond the radii (eSpace) a frame whose final rounding's bound
+/// is `rounding` (`R`, [`final_rounding`]) gathers around the body's path:
+/// [`REACH_MARGIN`] plus what the skin's checks add, in
+/// `(SKIN_ROUNDS + 2) (max_padding + 5 R)`. The resting scans look
+/// `2 max_padding + 2 R` beyond the radius ([`scan_resting`], the band),
+/// and [`land_checked`] pushes at most [`SKIN_ROUNDS`] times by `pad + 2 R'`
+/// and measures every triangle within `1 + pad + R'` of where it goes,
+/// with `R' = R + 2 u |p| <= (1 + 2 / sqrt(3)) R` (`|p| <= m + travel`),
+/// below `2.2 R`. Where the rounding is a radius or more (an `f32` body
+/// ten times narrower than it is tall, a million units out), the margin
+/// of `1.05` had left the floor under the pushed positions ungathered: a
+/// still body touching a floor was pushed half a radius through it (a
+/// review, session 39).
+pub(crate) fn skin_margin(rounding: f64, opts: &RobustOptions) -> f64 {
+    REACH_MARGIN + (SKIN_ROUNDS + 2) as f64 * (opts.max_padding + 5.0 * rounding)
 }
 
 /// Two contact normals whose cross product's squared length exceeds this
@@ -1014,6 +1031,44 @@ pub(crate) fn final_rounding<T: Real>(m: f64, travel: f64, opts: &RobustOptions)
     (rounding >= 0.5 * least_pad).then_some(rounding)
 }
 
+/// The largest bound `R = sqrt(3) u (m + 2 travel)` of the final
+/// position's rounding (in radii, for a start of eSpace magnitude `m` and
+/// a frame reaching `travel`; [`RobustOptions::rounding_ulps`]) a robust
+/// move accepts: half a radius, where a coordinate of the
+/// position rounds by about a third of the radius. Beyond it the gap the
+/// response keeps cannot be held: a review (session 39) found `f32`
+/// ellipsoids ten times narrower than tall touching a floor a million
+/// units out (`R` about one radius) pushed through it by the push that
+/// restores the skin, since a triangle's side within half its padding
+/// (then over two radii) is not trusted.
+pub const MAX_FINAL_ROUNDING: f64 = 0.5;
+
+/// `Ok` unless the final rounding's bound `R = sqrt(3) u (m + 2 travel)`
+/// ([`final_rounding`] with the derived factor `sqrt(3)`, whatever
+/// [`RobustOptions::rounding_ulps`] says: the rounding itself, not the
+/// tolerance for it) for a start of eSpace magnitude `m` and a frame
+/// reaching `travel` exceeds [`MAX_FINAL_ROUNDING`]: in `f32` a start
+/// beyond about `4.8e6` radii from the origin (`2.6e15` in `f64`), or a
+/// move that reaches that far.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming the position, as described.
+pub(crate) fn check_final_rounding<T: Real>(m: f64, travel: f64) -> Result<(), Error> {
+    let rounding = 3f64.sqrt() * T::unit_roundoff() * (m + 2.0 * travel);
+    if rounding <= MAX_FINAL_ROUNDING {
+        return Ok(());
+    }
+    Err(Error::InvalidArgument {
+        what: "position".into(),
+        message: format!(
+            "measured in the body's radii it lies {m:.3e} from the origin and the move reaches {travel:.3e}, where {} \
+             rounds a position by up to {rounding:.3} radii, more than {MAX_FINAL_ROUNDING}: the robust response cannot \
+             keep its gap from the geometry there; move the world's origin nearer the body, or use a wider precision",
+            T::name()
+        ),
+    })
+}
+
 /// The final rounding's bound `R = rounding_ulps u (m + 2 travel)` and
 /// the least padding `min(max_padding, (position_ulps m + padding_ulps)
 /// u)` ([`final_rounding`], [`land`]).
@@ -1035,6 +1090,11 @@ fn rounding_and_least_pad<T: Real>(m: f64, travel: f64, opts: &RobustOptions) ->
 /// into a duct's ceiling). The resting band is `2 R` wider in such frames
 /// ([`super::Frame::band`]), so a body pushed out to `1 + pad + R` rests
 /// there in the next frame instead of falling back.
+/// The candidates are gathered again first where the depenetration pushes
+/// made `R` larger than the frame's margin allowed for ([`skin_margin`]).
+///
+/// # Errors
+/// As [`super::Frame::regather`].
 #[cold]
 fn land_checked<T: Real>(
     frame: &mut Frame<'_, T>,
@@ -1042,8 +1102,13 @@ fn land_checked<T: Real>(
     origin: &Vec3<T>,
     rounding: f64,
     opts: &RobustOptions,
-) -> Vec3<T> {
+) -> Result<Vec3<T>, Error> {
     let body = frame.body;
+    let margin = skin_margin(rounding, opts);
+    if margin > frame.margin {
+        frame.margin = margin;
+        frame.regather(&body.to_espace(&(&world - origin)))?;
+    }
     // The measurement's own error, `2u |p|`, on top of the rounding.
     let extra =
         T::c(rounding) + T::c(2.0 * T::unit_roundoff()) * max_abs(&body.to_espace(&(&world - origin)), T::zero());
@@ -1051,9 +1116,9 @@ fn land_checked<T: Real>(
     let mut best: Option<(Nearest<T>, Vec3<T>)> = None;
     for round in 0..=SKIN_ROUNDS {
         let q = body.to_espace(&(&world - origin));
-        let Some(near) = scan_resting(frame, &q, opts) else { return world };
+        let Some(near) = scan_resting(frame, &q, opts) else { return Ok(world) };
         if !near.short() {
-            return world;
+            return Ok(world);
         }
         let longest = near.pad.clone() + T::c(2.0) * &extra;
         if best.as_ref().is_none_or(|(b, _)| near.beats(b)) {
@@ -1066,7 +1131,7 @@ fn land_checked<T: Real>(
         }
         world = body.from_espace(&(q + shortest_push(&mut limits, &longest, opts))) + origin;
     }
-    best.map_or(world, |(_, w)| w)
+    Ok(best.map_or(world, |(_, w)| w))
 }
 
 /// The triangle whose skin is thinnest at a position, from
@@ -1218,7 +1283,7 @@ pub(crate) fn start<T: Real>(
     let settled = settle(frame, pushed.clone(), opts);
     let skin = norm(&(&settled - &pushed)).to_f64();
     frame.trace.depenetration += skin;
-    if since_gather + skin > crate::detect::REACH_MARGIN - 1.0 {
+    if since_gather + skin > REACH_MARGIN - 1.0 {
         frame.regather(&settled)?;
     }
     frame.trace.embedded = least_distance(frame, &settled).is_some();
@@ -1277,7 +1342,7 @@ fn depenetrate<T: Real>(
         frame.trace.depenetration += length;
         since_gather += length;
         p += push;
-        if since_gather > crate::detect::REACH_MARGIN - 1.0 {
+        if since_gather > REACH_MARGIN - 1.0 {
             frame.regather(&p)?;
             since_gather = 0.0;
             gathers += 1;

@@ -438,3 +438,133 @@ fn robust_f32_far_body_meets_a_wall_in_its_resting_band_beyond_the_cap_without_s
     assert_eq!(m.trace.stop, StopReason::Blocked);
     assert_eq!(m.trace.iterations, 0, "the wall was swept for, not met as a resting contact");
 }
+
+/// A flat floor `y = x0 / 2` of 24 x 24 cells with alternating diagonals,
+/// centred on `(x0, x0 / 2, -x0)`, cells `cell` wide.
+fn far_floor(x0: f64, cell: f64) -> std::sync::Arc<sweepslide::world::TriangleMesh> {
+    let (y0, z0) = (x0 / 2.0, -x0);
+    let mut vertices = Vec::new();
+    let mut triangles = Vec::new();
+    for j in 0..=24 {
+        for i in 0..=24 {
+            vertices.push([x0 + cell * (f64::from(i) - 12.0), y0, z0 + cell * (f64::from(j) - 12.0)]);
+        }
+    }
+    for j in 0..24u32 {
+        for i in 0..24u32 {
+            let k = j * 25 + i;
+            let (a, b, c, d) = (k, k + 1, k + 26, k + 25);
+            if (i + j) % 2 == 0 {
+                triangles.extend([[a, d, c], [a, c, b]]);
+            } else {
+                triangles.extend([[a, d, b], [b, d, c]]);
+            }
+        }
+    }
+    std::sync::Arc::new(sweepslide::world::TriangleMesh::new(vertices, triangles).unwrap())
+}
+
+/// Bodies touching a flat tessellated floor far out in `f32`, where the
+/// final rounding `R` is a sizeable part of the radius: still, or pushed
+/// along the floor under gravity, each ends clear of it and above it. A
+/// review (session 39) found the skin's push, which reaches `1 + pad + 2R`
+/// beyond the radius, working on candidates gathered `1.05` radii out:
+/// with `R` a radius (an ellipsoid `(0.1, 1, 1)` a million units out)
+/// a still body touching the floor ended half a radius through it. The
+/// gathers now reach as far as the skin's checks look; and from `R` of
+/// half a radius on the move is refused (next test).
+#[test]
+fn robust_f32_bodies_touching_a_far_floor_stay_clear_of_it_and_above_it() {
+    let opts = MoveOptions::new(Response::Robust);
+    for (x0, radii) in [
+        (1e6, [1.0, 1.0, 1.0]),
+        (3e5, [0.1, 1.0, 1.0]),
+        (3e5, [0.1, 0.1, 0.1]),
+        (1e6, [1.0, 0.4, 1.0]),
+        (4.5e5, [0.1, 1.0, 1.0]),
+        (4.5e5, [0.1, 0.1, 1.0]),
+    ] {
+        let world = World::<f32>::new(far_floor(x0, 43.0 * radii[0].min(radii[2]))).unwrap();
+        let body = Ellipsoid::<f32>::new(radii).unwrap();
+        for k in 0..8 {
+            let k = f64::from(k);
+            let start = v::<f32>([x0 + 0.37 * radii[0] * k, x0 / 2.0 + radii[1], -x0 + 0.53 * radii[2] * k]);
+            for (push, gravity) in [([0.0; 3], None), ([0.0, 0.0, 0.2 * radii[2]], Some([0.0, -0.05 * radii[1], 0.0]))]
+            {
+                let g = gravity.map(v::<f32>);
+                let moved = move_body(&world, &body, &start, &v(push), g.as_ref(), &opts).unwrap();
+                let end = f64s(&moved.position);
+                let pen = penetration(&world, body.radii(), &moved.position).unwrap_or(f64::NEG_INFINITY);
+                let what = format!("radii {radii:?} at {x0:e}, start {:?}, push {push:?}: {end:?}", f64s(&start));
+                assert!(pen <= 0.0, "{what}: {pen} inside");
+                assert!(end[1] > x0 / 2.0, "{what}: below the floor");
+            }
+        }
+    }
+}
+
+/// Beyond half a radius of final rounding the robust move is refused with
+/// a typed error naming the position (the review's body, an `f32`
+/// ellipsoid `(0.1, 1, 1)` a million units out, ten million radii along
+/// `x`); the faithful responses still move.
+#[test]
+fn robust_f32_move_whose_rounding_exceeds_half_a_radius_is_refused() {
+    let world = World::<f32>::new(far_floor(1e6, 4.3)).unwrap();
+    let body = Ellipsoid::<f32>::new([0.1, 1.0, 1.0]).unwrap();
+    let start = v::<f32>([1e6, 5e5 + 1.0, -1e6]);
+    let e = move_body(&world, &body, &start, &v([0.0, 0.0, 0.2]), None, &MoveOptions::new(Response::Robust))
+        .expect_err("refused");
+    let text = e.to_string();
+    assert!(text.contains("position") && text.contains("cannot keep its gap"), "{text}");
+    for response in [Response::Fauerby, Response::Linahan] {
+        assert!(move_body(&world, &body, &start, &v([0.0, 0.0, 0.2]), None, &MoveOptions::new(response)).is_ok());
+    }
+    // Just within: a unit sphere there (`R` about 0.1 radii) moves.
+    let sphere = Ellipsoid::<f32>::new([1.0; 3]).unwrap();
+    assert!(move_body(&world, &sphere, &start, &v([0.0, 0.0, 0.2]), None, &MoveOptions::new(Response::Robust)).is_ok());
+}
+
+/// A far floor with a ceiling `gap` above it (one quad each, facing each
+/// other), centred on `(x0, x0 / 2, -x0)`.
+fn far_duct(x0: f64, gap: f64) -> std::sync::Arc<sweepslide::world::TriangleMesh> {
+    let (y0, z0, h) = (x0 / 2.0, -x0, 50.0);
+    let vertices = vec![
+        [x0 - h, y0, z0 - h],
+        [x0 + h, y0, z0 - h],
+        [x0 + h, y0, z0 + h],
+        [x0 - h, y0, z0 + h],
+        [x0 - h, y0 + gap, z0 - h],
+        [x0 + h, y0 + gap, z0 - h],
+        [x0 + h, y0 + gap, z0 + h],
+        [x0 - h, y0 + gap, z0 + h],
+    ];
+    let triangles = vec![[0, 3, 2], [0, 2, 1], [4, 5, 6], [4, 6, 7]];
+    std::sync::Arc::new(sweepslide::world::TriangleMesh::new(vertices, triangles).unwrap())
+}
+
+/// The same bodies in a far duct whose ceiling lies from 0.3 to 2 radii
+/// above them, where the push that restores the skin below (up to
+/// `1 + pad + R` from the floor, `R` up to 0.46 radii here) could carry
+/// them into a ceiling the frame did not gather: every move ends clear of
+/// both (the frame's gathers reach as far as the skin's checks look).
+#[test]
+fn robust_f32_bodies_touching_a_far_duct_floor_stay_clear_of_its_ceiling() {
+    let opts = MoveOptions::new(Response::Robust);
+    for x0 in [2e5, 3e5, 4e5, 4.5e5] {
+        for gap in [2.3, 2.6, 2.9, 3.2, 3.5, 4.0] {
+            let world = World::<f32>::new(far_duct(x0, gap)).unwrap();
+            let body = Ellipsoid::<f32>::new([0.1, 1.0, 1.0]).unwrap();
+            for k in 0..8 {
+                let k = f64::from(k);
+                let start = v::<f32>([x0 + 0.037 * k, x0 / 2.0 + 1.0, -x0 + 0.53 * k]);
+                for (push, gravity) in [([0.0; 3], None), ([0.0, 0.0, 0.2], Some([0.0, -0.05, 0.0]))] {
+                    let g = gravity.map(v::<f32>);
+                    let moved = move_body(&world, &body, &start, &v(push), g.as_ref(), &opts).unwrap();
+                    let pen = penetration(&world, body.radii(), &moved.position).unwrap_or(f64::NEG_INFINITY);
+                    let end = f64s(&moved.position);
+                    assert!(pen <= 0.0, "x0 {x0:e}, gap {gap}, start {k}, push {push:?}: {end:?} {pen} inside");
+                }
+            }
+        }
+    }
+}
