@@ -368,6 +368,24 @@ fn csv_quotes_odd_scene_names_and_inconsistent_runs_are_refused() {
     let mut lines = csv.lines();
     let header = csv_fields(lines.next().unwrap());
     let scene = header.iter().position(|h| h == "scene").unwrap();
+    // The CSV holds the fields of `results.json`, the vectors one column
+    // per coordinate (a review, session 39: `units_per_meter` was missing).
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let mut keys: Vec<String> = json[0]
+        .as_object()
+        .unwrap()
+        .keys()
+        .flat_map(|k| match k.as_str() {
+            "final_position" => ["final_x", "final_y", "final_z"].map(String::from).to_vec(),
+            "radii" => ["radius_x", "radius_y", "radius_z"].map(String::from).to_vec(),
+            _ => vec![k.clone()],
+        })
+        .collect();
+    let mut columns = header.clone();
+    keys.sort();
+    columns.sort();
+    assert_eq!(columns, keys, "the CSV's columns and the JSON's fields");
     for line in lines {
         let fields = csv_fields(line);
         assert_eq!(fields.len(), header.len(), "{line}");

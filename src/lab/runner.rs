@@ -196,7 +196,10 @@ pub struct RunResult {
     /// before it was measured).
     #[serde(default, with = "super::json_float::optional")]
     pub drift: Option<f64>,
-    /// Mean wall-clock nanoseconds per `move_body` call.
+    /// Wall-clock nanoseconds per `move_body` call: the run's moves again,
+    /// back to back from their recorded starts, three times over; the
+    /// least of the three means (a single pass could be slowed a
+    /// hundredfold by a cold cache or the other jobs of a loaded machine).
     pub ns_per_move: f64,
     /// Triangles of the scene degenerate once rounded into the run's
     /// precision ([`World::degenerate_in_backend`]): they collided as the
@@ -209,6 +212,14 @@ pub struct RunResult {
     /// written before it was recorded, as every run then used).
     #[serde(default = "one")]
     pub units_per_meter: f64,
+    /// The body's radii in world units: penetration, clearance and the
+    /// final position are in world units for a sphere, and penetration in
+    /// radii (eSpace) for an ellipsoid; these convert between them (absent
+    /// in `runs.json` files written before they were recorded).
+    /// Always finite (a body's radii are checked), so written as plain
+    /// numbers.
+    #[serde(default)]
+    pub radii: Option<[f64; 3]>,
 }
 
 /// The default of [`RunResult::units_per_meter`].
@@ -490,12 +501,18 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
     // retrained the branch predictors: the robust response on the two
     // triangles of `floor` took about 1,250 ns per move there in `f32`
     // and Fauerby's 570 ns, against about 510 and 310 ns here.
+    // The least of three passes: one pass alone was seen 100 times slower
+    // than the same run's next seed on a loaded machine (a review, session
+    // 39).
     let grav = has_gravity.then_some(&gravity);
-    let clock = Instant::now();
-    for (start, vel) in positions.iter().zip(&velocities) {
-        std::hint::black_box(move_body(&world, &body, start, vel, grav, &opts)?);
+    let mut ns = u128::MAX;
+    for _ in 0..3 {
+        let clock = Instant::now();
+        for (start, vel) in positions.iter().zip(&velocities) {
+            std::hint::black_box(move_body(&world, &body, start, vel, grav, &opts)?);
+        }
+        ns = ns.min(clock.elapsed().as_nanos());
     }
-    let ns = clock.elapsed().as_nanos();
     let speed = {
         let v = first_push.unwrap_or(&scene.gravity);
         (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
@@ -534,6 +551,7 @@ fn run_in<T: Real, R: Real>(cfg: &RunConfig, ref_bits: u32) -> Result<RunOutput,
         ns_per_move: ns as f64 / moves.max(1) as f64,
         degenerate_triangles: degenerate.len(),
         units_per_meter: scene.units_per_meter,
+        radii: Some(scene.radii),
     };
     Ok(RunOutput { result, frames: records, degenerate })
 }

@@ -192,8 +192,10 @@ pub fn render(dir: &Path, runs: &Runs, elapsed_s: Option<f64>) -> Result<Vec<Pat
         .map_err(|e| io(&json_path, e))?;
     let csv_path = dir.join("results.csv");
     std::fs::write(&csv_path, csv(&lines)).map_err(|e| io(&csv_path, e))?;
+    let claims_path = dir.join("claims.json");
+    std::fs::write(&claims_path, claims_json(runs)).map_err(|e| io(&claims_path, e))?;
     let figures = plots::figures(runs);
-    let mut written = vec![json_path, csv_path];
+    let mut written = vec![json_path, csv_path, claims_path];
     for f in &figures {
         let path = dir.join("plots").join(format!("{}.svg", f.name));
         std::fs::write(&path, &f.svg).map_err(|e| io(&path, e))?;
@@ -205,9 +207,37 @@ pub fn render(dir: &Path, runs: &Runs, elapsed_s: Option<f64>) -> Result<Vec<Pat
     Ok(written)
 }
 
+/// `claims.json`: what the page's claims table says, with the thresholds
+/// it judged by, the units and the matrix, for a reader of the data
+/// without the page.
+fn claims_json(runs: &Runs) -> String {
+    let claims: Vec<serde_json::Value> = claims::evaluate(runs)
+        .into_iter()
+        .map(|c| {
+            serde_json::json!({
+                "source": c.source, "claim": c.text, "reproduced": c.reproduced, "evidence": c.evidence,
+            })
+        })
+        .collect();
+    let doc = serde_json::json!({
+        "sweepslide": env!("CARGO_PKG_VERSION"),
+        "matrix": if runs.info.quick { "quick" } else { "full" },
+        "runs": runs.info.runs,
+        "thresholds": {
+            "jitter": claims::JITTER_THRESHOLD, "wobble": claims::JITTER_THRESHOLD,
+            "snag_ratio": claims::SNAG_THRESHOLD, "drift_radii": claims::DRIFT_THRESHOLD,
+        },
+        "units": "penetration and final positions in world units for a sphere; penetration in radii (eSpace) for an \
+                  ellipsoid (each run's radii in results.json); jitter and wobble relative to the speed; drift in radii; \
+                  non-finite values written as the strings \"NaN\", \"inf\", \"-inf\" (docs/error-analysis.md)",
+        "claims": claims,
+    });
+    serde_json::to_string_pretty(&doc).unwrap_or_default()
+}
+
 fn csv(lines: &[ResultLine<'_>]) -> String {
     let mut out = String::from(
-        "index,group,scene,response,detection,precision,seed,frames,motion,max_penetration,penetrating_frames,first_penetrating_frame,back_face_frames,max_front_penetration,jitter,wobble,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,embedded_frames,decision_flips,plane_flips,snag,drift,final_x,final_y,final_z,ns_per_move,degenerate_triangles\n",
+        "index,group,scene,response,detection,precision,seed,frames,motion,max_penetration,penetrating_frames,first_penetrating_frame,back_face_frames,max_front_penetration,jitter,wobble,max_iterations,max_pass_iterations,mean_iterations,capped_frames,nan_frames,embedded_frames,decision_flips,plane_flips,snag,drift,final_x,final_y,final_z,ns_per_move,degenerate_triangles,units_per_meter,radius_x,radius_y,radius_z\n",
     );
     for l in lines {
         let r = l.result;
@@ -219,8 +249,9 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
         let drift = r.drift.map_or(String::new(), |d| format!("{d:e}"));
         let first = r.first_penetrating_frame.map_or(String::new(), |f| f.to_string());
         let [x, y, z] = r.final_position;
+        let radii = r.radii.map_or(",,".into(), |[a, b, c]| format!("{a:e},{b:e},{c:e}"));
         out += &format!(
-            "{},{group},\"{}\",{},{},{},{},{},{},{:e},{},{first},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{snag},{drift},{x:e},{y:e},{z:e},{:.1},{}\n",
+            "{},{group},\"{}\",{},{},{},{},{},{},{:e},{},{first},{},{:e},{:e},{:e},{},{},{},{},{},{},{},{},{snag},{drift},{x:e},{y:e},{z:e},{:.1},{},{:e},{radii}\n",
             l.index,
             // A quoted CSV field doubles its quotes (a mesh's file name may
             // hold one).
@@ -246,7 +277,8 @@ fn csv(lines: &[ResultLine<'_>]) -> String {
             r.decision_flips,
             r.plane_flips,
             r.ns_per_move,
-            r.degenerate_triangles
+            r.degenerate_triangles,
+            r.units_per_meter
         );
     }
     out

@@ -54,16 +54,44 @@ fn bounds(series: &[Series], log_y: bool) -> ((f64, f64), (f64, f64)) {
     if !x0.is_finite() {
         (x0, x1, y0, y1) = (0.0, 1.0, if log_y { LOG_FLOOR } else { 0.0 }, 1.0);
     }
-    let pad = |a: f64, b: f64| {
-        let d = if b > a { (b - a) * 0.05 } else { a.abs().max(1.0) * 0.05 };
+    // A constant coordinate is padded by a twentieth of the other axis's
+    // span (else of its own size): padded by its own size, a slide 15
+    // units long at `z = 1e4` was drawn in a window 1,000 units wide, a
+    // dot (a review, session 39).
+    let pad = |a: f64, b: f64, other: f64| {
+        let d = if b > a {
+            (b - a) * 0.05
+        } else if other > 0.0 {
+            other * 0.05
+        } else {
+            a.abs().max(1.0) * 0.05
+        };
         (a - d, b + d)
     };
-    let (x0, x1) = pad(x0, x1);
-    let (y0, y1) = if log_y { (y0.max(LOG_FLOOR) / 3.0, y1.max(LOG_FLOOR * 10.0) * 3.0) } else { pad(y0, y1) };
+    let (dx, dy) = (x1 - x0, y1 - y0);
+    let (x0, x1) = pad(x0, x1, if log_y { 0.0 } else { dy });
+    let (y0, y1) = if log_y { (y0.max(LOG_FLOOR) / 3.0, y1.max(LOG_FLOOR * 10.0) * 3.0) } else { pad(y0, y1, dx) };
     ((x0, x1), (y0, y1))
 }
 
-/// A line chart; with `equal` the axes share one scale (for trajectories).
+/// A tick label: integers without a fraction, other values without
+/// trailing zeros, and never `-0`.
+fn tick(v: &f64) -> String {
+    let v = *v + 0.0;
+    if v == v.round() && v.abs() < 1e15 {
+        return format!("{v:.0}");
+    }
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+/// Height of the plot itself, above the key.
+const PLOT_HEIGHT: u32 = 420;
+
+/// A line chart; with `equal` the axes share one scale (for trajectories:
+/// a circle marks each path's start, a cross its end). The key lies below
+/// the plot, where it hides no data.
 fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_y: bool, equal: bool) -> String {
     let mut svg = String::new();
     let ((mut x0, mut x1), (mut y0, mut y1)) = bounds(series, log_y);
@@ -79,24 +107,49 @@ fn line_chart(title: &str, x_label: &str, y_label: &str, series: &[Series], log_
         return failed_svg(&format!("coordinates beyond {PLOT_LIMIT:e} cannot be plotted"));
     }
     {
-        let root = SVGBackend::with_string(&mut svg, (640, 420)).into_drawing_area();
+        let key_height = if series.is_empty() { 0 } else { 10 + 18 * series.len() as u32 };
+        let root = SVGBackend::with_string(&mut svg, (640, PLOT_HEIGHT + key_height)).into_drawing_area();
         let drawn: Result<(), Box<dyn std::error::Error>> = (|| {
             root.fill(&WHITE)?;
-            let mut builder = ChartBuilder::on(&root);
+            let (plot, key) = root.split_vertically(PLOT_HEIGHT);
+            let mut builder = ChartBuilder::on(&plot);
             builder.caption(title, ("sans-serif", 18)).margin(12).x_label_area_size(40).y_label_area_size(70);
+            let grey = ("sans-serif", 12).into_font().color(&BLACK.mix(0.6));
             if log_y {
                 let mut chart = builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?;
                 chart
                     .configure_mesh()
                     .x_desc(x_label)
                     .y_desc(y_label)
+                    .x_label_formatter(&tick)
                     .y_label_formatter(&|v| format!("{v:.0e}"))
                     .draw()?;
-                draw_series(&mut chart, series, |y| y.max(LOG_FLOOR))?;
+                draw_series(&mut chart, series, |y| y.max(LOG_FLOOR), equal)?;
+                // Zero has no logarithm: say where it is drawn, and say so
+                // where every value is zero (the axis then has no ticks).
+                let values = series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).filter(|y| y.is_finite());
+                let all_zero = values.clone().all(|y| y <= LOG_FLOOR) && values.count() > 0;
+                let note = if all_zero {
+                    format!("every value is 0 (or below {LOG_FLOOR:.0e}), drawn at {LOG_FLOOR:.0e}")
+                } else {
+                    format!("0 (and below {LOG_FLOOR:.0e}) is drawn at {LOG_FLOOR:.0e}")
+                };
+                chart.draw_series(std::iter::once(Text::new(note, (x0, LOG_FLOOR * 30.0), grey)))?;
             } else {
                 let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
-                chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw()?;
-                draw_series(&mut chart, series, |y| y)?;
+                chart
+                    .configure_mesh()
+                    .x_desc(x_label)
+                    .y_desc(y_label)
+                    .x_label_formatter(&tick)
+                    .y_label_formatter(&tick)
+                    .draw()?;
+                draw_series(&mut chart, series, |y| y, equal)?;
+            }
+            for (k, s) in series.iter().enumerate() {
+                let y = 6 + 18 * k as i32;
+                key.draw(&PathElement::new(vec![(80, y + 7), (112, y + 7)], s.colour.stroke_width(3)))?;
+                key.draw(&Text::new(s.label.clone(), (120, y), ("sans-serif", 13)))?;
             }
             root.present()?;
             Ok(())
@@ -119,36 +172,38 @@ fn failed_svg(why: &str) -> String {
     )
 }
 
+/// Draws `series`; with `paths` (trajectories), a circle at each start and
+/// a cross at each end.
 fn draw_series<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate<From = (f64, f64)>>(
     chart: &mut ChartContext<'a, DB, CT>,
     series: &[Series],
     map_y: impl Fn(f64) -> f64,
+    paths: bool,
 ) -> Result<(), Box<dyn std::error::Error>>
 where
     DB::ErrorType: 'static,
 {
-    // Earlier series are drawn wider and lighter, so a later one lying on top
-    // of them (responses that agree) leaves them visible at its sides.
+    // Earlier series are drawn a little wider and lighter, so a later one
+    // lying on top of them (responses that agree) leaves them visible at
+    // its sides: 2 px more per later series, at most 6 px in all (a review
+    // found lines 17 px wide hiding the detail of unrelated runs).
     let n = series.len();
     for (k, s) in series.iter().enumerate() {
         let pts: Vec<(f64, f64)> =
             s.points.iter().map(|&(x, y)| (x, map_y(y))).filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
         let c = s.colour;
-        let width = 2 + 3 * (n - 1 - k) as u32;
+        let width = 2 + 2 * (n - 1 - k).min(2) as u32;
         let style = c.mix(if k + 1 == n { 1.0 } else { 0.6 }).stroke_width(width);
-        chart
-            .draw_series(LineSeries::new(pts.clone(), style))?
-            .label(s.label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(width)));
+        chart.draw_series(LineSeries::new(pts.clone(), style))?;
+        if let (true, Some(&first)) = (paths, pts.first()) {
+            chart.draw_series(std::iter::once(Circle::new(first, 6, c.stroke_width(2))))?;
+        }
         if let Some(&last) = pts.last() {
             chart.draw_series(std::iter::once(Cross::new(last, 6, c.stroke_width(2))))?;
         }
         if pts.len() <= 40 {
             chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
         }
-    }
-    if !series.is_empty() {
-        chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
     }
     Ok(())
 }
@@ -214,7 +269,7 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
                 name: format!("trajectory-{}-{view}", slug(scene)),
                 title: format!("{scene}: trajectories, {view} view (f32)"),
                 caption: format!(
-                    "Centre of the body every frame, {} against {}, for each response in f32.",
+                    "Centre of the body every frame, {} against {}, for each response in f32 (a circle marks the start, a cross the end).",
                     labels.0, labels.1
                 ),
                 scene: None,
@@ -293,6 +348,16 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
     });
     // The precision dial.
     for base in DIAL_SCENES {
+        let frames_in = |group: Group| {
+            runs.records
+                .iter()
+                .find(|r| {
+                    r.entry.group == group
+                        && matches!(&r.entry.source, SceneSource::Builtin { spec, offset } if spec == base && *offset == [0; 3])
+                })
+                .map_or(0, |r| r.entry.frames)
+        };
+        let (frames, main_frames) = (frames_in(Group::Dial), frames_in(Group::Main));
         for (metric, pick) in [("jitter", 0usize), ("penetration", 1usize)] {
             let series: Vec<Series> = RESPONSES
                 .iter()
@@ -306,6 +371,12 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
                             // A run that reached NaN has neither metric (its
                             // jitter and penetration stop at the NaN frame).
                             let o = r.outcome.as_ref().ok().filter(|o| o.nan_frames == 0)?;
+                            // A run held at its cap most of the time is
+                            // stuck: its jitter, zero, would read as the
+                            // best (a review, session 39).
+                            if pick == 0 && 2 * o.capped_frames > o.frames {
+                                return None;
+                            }
                             let bits: f64 = o.precision.trim_start_matches("mpfr").parse().ok()?;
                             Some((bits, if pick == 0 { o.jitter } else { o.counted_penetration().1 }))
                         })
@@ -318,7 +389,8 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
                 name: format!("dial-{base}-{metric}"),
                 title: format!("Precision dial: {metric} in {base} against MPFR bits"),
                 caption: format!(
-                    "{metric} of each response in the {base} scene run in Mpfr<BITS>; values below {LOG_FLOOR:.0e} (zero included) are drawn at it, and a precision whose run reached NaN has no point (the summary table counts its NaN frames)."
+                    "{metric} of each response in the {base} scene run in Mpfr<BITS> ({frames} frames; the main table runs {main_frames}, so its jitter, over the last quarter, can differ); values below {LOG_FLOOR:.0e} (zero included) are drawn at it, and a precision whose run reached NaN has no point (the summary table counts its NaN frames){}.",
+                    if pick == 0 { ", nor one that spent more than half its frames at its cap (stuck, which jitter does not show)" } else { "" }
                 ),
                 scene: None,
                 svg: line_chart(
@@ -354,7 +426,7 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
     out.push(Figure {
         name: "iterations-histogram".into(),
         title: "Collision checks per frame".into(),
-        caption: "Share of frames (all main scenes, f32, seed 1) by the number of collision checks the frame needed; both passes (velocity and gravity) count.".into(),
+        caption: "Share of frames (all main scenes, f32, seed 1) by the number of collision checks the frame needed; both passes (velocity and gravity) count, and the last point, at 16, counts 16 or more.".into(),
         scene: None,
         svg: line_chart("Collision checks per frame (f32)", "checks per frame", "share of frames", &series, false, false),
     });
@@ -363,7 +435,7 @@ pub fn figures(runs: &Runs) -> Vec<Figure> {
         out.push(Figure {
             name: format!("scene-{}-top", slug(scene)),
             title: format!("{scene}: top view (f32)"),
-            caption: "Centre of the body every frame, seen from above (x against z), each response in f32, seed 1."
+            caption: "Centre of the body every frame, seen from above (x against z), each response in f32, seed 1 (a circle marks the start, a cross the end)."
                 .into(),
             scene: Some(scene.clone()),
             svg: line_chart(
