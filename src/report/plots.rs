@@ -259,30 +259,20 @@ fn trajectory(scene: &str, runs: &Runs, axes: (usize, usize)) -> Vec<Series> {
 pub fn figures(runs: &Runs) -> Vec<Figure> {
     let mut out = Vec::new();
     let names = scene_names(runs);
-    // Trajectories in the paper's scenes, side and top views.
+    // Trajectories in the paper's scenes, side views (each scene's top view
+    // is in its own section).
     for base in DIAL_SCENES {
         let Some(scene) = names.iter().find(|n| n.split(':').next() == Some(base) && !n.contains('@')) else {
             continue;
         };
-        for (view, axes, labels) in [("side", (0, 1), ("x", "y")), ("top", (0, 2), ("x", "z"))] {
-            out.push(Figure {
-                name: format!("trajectory-{}-{view}", slug(scene)),
-                title: format!("{scene}: trajectories, {view} view (f32)"),
-                caption: format!(
-                    "Centre of the body every frame, {} against {}, for each response in f32 (a circle marks the start, a cross the end).",
-                    labels.0, labels.1
-                ),
-                scene: None,
-                svg: line_chart(
-                    &format!("{scene}, {view} view (f32)"),
-                    labels.0,
-                    labels.1,
-                    &trajectory(scene, runs, axes),
-                    false,
-                    true,
-                ),
-            });
-        }
+        out.push(Figure {
+            name: format!("trajectory-{}-side", slug(scene)),
+            title: format!("{scene}: trajectories, side view (f32)"),
+            caption: "Centre of the body every frame, x against y, for each response in f32 (a circle marks the start, a cross the end; the top view is in the scene's section)."
+                .into(),
+            scene: None,
+            svg: line_chart(&format!("{scene}, side view (f32)"), "x", "y", &trajectory(scene, runs, (0, 1)), false, true),
+        });
     }
     // Jitter made visible: the corner's x coordinate frame by frame.
     if let Some(scene) = names.iter().find(|n| n.split(':').next() == Some("corner") && !n.contains('@')) {
